@@ -1,0 +1,71 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Triangulated, watertight, outward-oriented surfaces of the hull and fins (CGAL Surface_mesh),
+// in the body frame (origin at CB, x forward, y starboard, z down; metres).
+#pragma once
+
+#include <span>
+#include <string>
+#include <vector>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Surface_mesh.h>
+#include <Eigen/Core>
+
+#include "auvloop/geometry/fin.hpp"
+#include "auvloop/geometry/myring.hpp"
+#include "auvloop/geometry/vehicle.hpp"
+
+namespace auvloop::geometry {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point3 = Kernel::Point_3;
+using SurfaceMesh = CGAL::Surface_mesh<Point3>;
+
+struct SurfaceResolution {
+  // Target edge length (m). Counts along every direction scale with 1 / edge_length, so halving it
+  // doubles the resolution everywhere (the convergence test relies on that).
+  double edge_length = 0.005;
+};
+
+struct SurfacePart {
+  std::string name;  // "hull" or the fin's name
+  SurfaceMesh mesh;
+};
+
+SurfaceMesh hull_surface(const MyringProfile& profile, double cb_station, SurfaceResolution res);
+SurfaceMesh fin_surface(const FinGeometry& fin, double deflection, SurfaceResolution res);
+
+// Hull followed by every fin (file order), each a closed surface; fins deflected by
+// `fin_deflections` (rad, one per fin, or empty for all zero). Throws GeometryError when a
+// deflection exceeds the fin set's max_deflection or a fin root would leave the hull.
+std::vector<SurfacePart> vehicle_parts(const Vehicle& vehicle, std::span<const double> fin_deflections,
+                                       SurfaceResolution res);
+// The boolean union of closed parts: one closed, manifold, outward-oriented surface (CGAL
+// corefinement). Throws GeometryError if CGAL cannot produce it.
+SurfaceMesh merge_parts(std::span<const SurfacePart> parts);
+
+struct SurfaceMeasures {
+  std::size_t vertices = 0;
+  std::size_t faces = 0;
+  double area = 0;    // m^2
+  double volume = 0;  // m^3 (enclosed; meaningful for closed surfaces)
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  // volume centroid, body frame
+  Eigen::Vector3d bbox_min = Eigen::Vector3d::Zero();
+  Eigen::Vector3d bbox_max = Eigen::Vector3d::Zero();
+};
+SurfaceMeasures measure(const SurfaceMesh& mesh);
+
+// Topological and geometric soundness of a surface; every field false means "no problem found".
+struct SurfaceDefects {
+  std::size_t boundary_edges = 0;     // open surface
+  std::size_t non_manifold = 0;       // edges used by more than two faces, pinched vertices
+  std::size_t misoriented_edges = 0;  // an edge traversed twice in the same direction
+  std::size_t degenerate_faces = 0;   // zero area
+  bool inward = false;                // consistently oriented, but normals point inside
+  bool self_intersecting = false;
+  [[nodiscard]] bool ok() const;
+  [[nodiscard]] std::string describe() const;  // one line per defect
+};
+SurfaceDefects inspect(const SurfaceMesh& mesh);
+
+}  // namespace auvloop::geometry
