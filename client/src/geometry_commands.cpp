@@ -148,10 +148,10 @@ std::vector<double> requested_deflections(const Vehicle& v, const GeometryOption
   const auto& fins = v.fin_set.fins;
   if (!o.fin_deflections_deg.empty()) {
     if (o.fin_deflections_deg.size() != fins.size()) {
-      throw CLI::ValidationError("--fin-deflection",
-                                 fmt::format("{} values given, but the vehicle has {} fins (in file "
-                                             "order: one value each, in degrees)",
-                                             o.fin_deflections_deg.size(), fins.size()));
+      throw CLI::ValidationError(
+          "--fin-deflection", fmt::format("{} values given, but the vehicle has {} fins (in file "
+                                          "order: one value each, in degrees)",
+                                          o.fin_deflections_deg.size(), fins.size()));
     }
     std::vector<double> out;
     for (double d : o.fin_deflections_deg) out.push_back(d * kDeg);
@@ -188,10 +188,10 @@ void run_export(const GeometryOptions& o) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::size_t faces = 0;
   for (const auto& p : parts) faces += p.mesh.number_of_faces();
-  fmt::print("wrote {} ({} {}, {} triangles, body frame: origin at CB, x forward, y starboard, "
-             "z down, metres) in {:.2f} s\n",
-             o.out, parts.size(), parts.size() == 1 ? "closed surface" : "closed parts", faces,
-             seconds);
+  fmt::print(
+      "wrote {} ({} {}, {} triangles, body frame: origin at CB, x forward, y starboard, "
+      "z down, metres) in {:.2f} s\n",
+      o.out, parts.size(), parts.size() == 1 ? "closed surface" : "closed parts", faces, seconds);
 }
 
 void run_check(const GeometryOptions& o) {
@@ -231,11 +231,12 @@ void add_vehicle_options(CLI::App* cmd, GeometryOptions& o) {
 
 void register_geometry_commands(CLI::App& app) {
   auto opts = std::make_shared<GeometryOptions>();
-  auto* geo = app.add_subcommand("geometry", "Vehicle geometry: properties, surface export, checks");
+  auto* geo =
+      app.add_subcommand("geometry", "Vehicle geometry: properties, surface export, checks");
   geo->require_subcommand(1);
 
-  auto* info = geo->add_subcommand(
-      "info", "Print hull, fin, mass and surface properties of a vehicle");
+  auto* info =
+      geo->add_subcommand("info", "Print hull, fin, mass and surface properties of a vehicle");
   add_vehicle_options(info, *opts);
   info->add_flag("--json", opts->json, "Print JSON instead of a table");
   info->footer("Example: auvloop geometry info --json > remus100.json");
@@ -254,9 +255,9 @@ void register_geometry_commands(CLI::App& app) {
   auto* rudder = exp->add_option(
       "--rudder", opts->rudder_deg,
       "Rudder angle delta_r in degrees (Prestero's sign: positive moves trailing edges to port)");
-  auto* plane = exp->add_option(
-      "--stern-plane", opts->stern_plane_deg,
-      "Stern-plane angle delta_s in degrees (positive moves trailing edges down)");
+  auto* plane =
+      exp->add_option("--stern-plane", opts->stern_plane_deg,
+                      "Stern-plane angle delta_s in degrees (positive moves trailing edges down)");
   per_fin->excludes(rudder)->excludes(plane);
   exp->add_flag("--parts", opts->parts,
                 "Write the hull and each fin as separate, overlapping closed parts instead of "
@@ -280,7 +281,8 @@ void register_geometry_commands(CLI::App& app) {
   chk->callback([opts] { run_check(*opts); });
 
   auto* preset = geo->add_subcommand(
-      "preset", "Print a built-in vehicle file, to start your own from (auvloop geometry preset > my.toml)");
+      "preset",
+      "Print a built-in vehicle file, to start your own from (auvloop geometry preset > my.toml)");
   preset->add_option("name", opts->preset, "Preset name")->capture_default_str();
   preset->callback([opts] { std::cout << geometry::preset_text(opts->preset); });
 }

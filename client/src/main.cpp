@@ -23,7 +23,8 @@ Units are SI; angles on the command line and in files are degrees.)";
 
 int main(int argc, char** argv) {
   using namespace auvloop;
-  CLI::App app{"auvloop: CFD-in-the-loop design and tuning of AUV manoeuvring controllers", "auvloop"};
+  CLI::App app{"auvloop: CFD-in-the-loop design and tuning of AUV manoeuvring controllers",
+               "auvloop"};
   app.footer(kFooter);
   app.require_subcommand(1);
   app.set_version_flag("--version", "auvloop 0.1.0");

@@ -33,7 +33,8 @@ Eigen::Matrix3d FinGeometry::rotation(double deflection) const {
 Eigen::Vector3d FinGeometry::point(double rho, double x, int side, double deflection) const {
   const double c = chord_at(rho);
   const Eigen::Vector2d s = set_.section.surface(x, side);
-  const Eigen::Vector3d in_plane = (le_offset_at(rho) + c * s.x()) * e_chord_ + c * s.y() * e_normal_;
+  const Eigen::Vector3d in_plane =
+      (le_offset_at(rho) + c * s.x()) * e_chord_ + c * s.y() * e_normal_;
   return post_origin_ + rho * e_span_ + rotation(deflection) * in_plane;
 }
 

@@ -18,16 +18,26 @@ SourceLocation location_of(const toml::source_region& region, const std::string&
 
 std::string type_name(const toml::node& node) {
   switch (node.type()) {
-    case toml::node_type::table: return "a table";
-    case toml::node_type::array: return "an array";
-    case toml::node_type::string: return "a string";
-    case toml::node_type::integer: return "an integer";
-    case toml::node_type::floating_point: return "a number";
-    case toml::node_type::boolean: return "a boolean";
-    case toml::node_type::date: return "a date";
-    case toml::node_type::time: return "a time";
-    case toml::node_type::date_time: return "a date-time";
-    default: return "nothing";
+    case toml::node_type::table:
+      return "a table";
+    case toml::node_type::array:
+      return "an array";
+    case toml::node_type::string:
+      return "a string";
+    case toml::node_type::integer:
+      return "an integer";
+    case toml::node_type::floating_point:
+      return "a number";
+    case toml::node_type::boolean:
+      return "a boolean";
+    case toml::node_type::date:
+      return "a date";
+    case toml::node_type::time:
+      return "a time";
+    case toml::node_type::date_time:
+      return "a date-time";
+    default:
+      return "nothing";
   }
 }
 
@@ -60,7 +70,9 @@ std::string join_options(std::initializer_list<std::string_view> options) {
   return s;
 }
 
-std::string format_number(double v) { return fmt::format("{:g}", v); }
+std::string format_number(double v) {
+  return fmt::format("{:g}", v);
+}
 
 }  // namespace
 
@@ -96,8 +108,10 @@ std::string Range::describe(std::string_view unit) const {
   const bool has_min = std::isfinite(min);
   const bool has_max = std::isfinite(max);
   std::string u = unit.empty() ? "" : " " + std::string(unit);
-  if (has_min && !has_max) return fmt::format("{} {}{}", min_open ? ">" : ">=", format_number(min), u);
-  if (!has_min && has_max) return fmt::format("{} {}{}", max_open ? "<" : "<=", format_number(max), u);
+  if (has_min && !has_max)
+    return fmt::format("{} {}{}", min_open ? ">" : ">=", format_number(min), u);
+  if (!has_min && has_max)
+    return fmt::format("{} {}{}", max_open ? "<" : "<=", format_number(max), u);
   if (!has_min && !has_max) return "a finite number" + u;
   return fmt::format("in {}{}, {}{}{}", min_open ? "(" : "[", format_number(min),
                      format_number(max), max_open ? ")" : "]", u);
@@ -146,9 +160,15 @@ Table Document::root() {
   return Table(this, &state_->root, "", SourceLocation{state_->source_name, 1, 1});
 }
 
-const std::string& Document::source_name() const { return state_->source_name; }
-void Document::add(Problem problem) { state_->problems.push_back(std::move(problem)); }
-bool Document::ok() const { return state_->problems.empty(); }
+const std::string& Document::source_name() const {
+  return state_->source_name;
+}
+void Document::add(Problem problem) {
+  state_->problems.push_back(std::move(problem));
+}
+bool Document::ok() const {
+  return state_->problems.empty();
+}
 
 void Document::check() const {
   if (ok()) return;
@@ -167,7 +187,9 @@ Table::Table(Document* doc, const toml::table* table, std::string prefix, Source
       where_(std::move(where)),
       used_(std::make_shared<std::set<std::string, std::less<>>>()) {}
 
-bool Table::has(std::string_view key) const { return table_->contains(key); }
+bool Table::has(std::string_view key) const {
+  return table_->contains(key);
+}
 
 std::string Table::path(std::string_view key) const {
   return prefix_.empty() ? std::string(key) : prefix_ + "." + std::string(key);
@@ -184,7 +206,8 @@ void Table::fail(std::string_view key, std::string message) {
 }
 
 void Table::missing(std::string_view key, std::string_view expected) {
-  doc_->add(Problem{where_, path(key), fmt::format("missing required key (expected {})", expected)});
+  doc_->add(
+      Problem{where_, path(key), fmt::format("missing required key (expected {})", expected)});
 }
 
 void Table::type_error(std::string_view key, const toml::node& node, std::string_view expected) {
@@ -314,9 +337,8 @@ std::string Table::choice_or(std::string_view key, std::string_view fallback,
 std::vector<double> Table::numbers(std::string_view key, std::size_t min_count,
                                    std::size_t max_count, Range range, std::string_view unit) {
   const std::string expected =
-      min_count == max_count
-          ? fmt::format("an array of {} numbers", min_count)
-          : fmt::format("an array of {} to {} numbers", min_count, max_count);
+      min_count == max_count ? fmt::format("an array of {} numbers", min_count)
+                             : fmt::format("an array of {} to {} numbers", min_count, max_count);
   const toml::node* node = lookup(key, expected);
   if (node == nullptr) return {};
   const toml::array* arr = node->as_array();
@@ -421,8 +443,8 @@ std::optional<Table> Table::optional_table(std::string_view key) {
 
 std::vector<Table> Table::tables(std::string_view key, std::size_t min_count,
                                  std::size_t max_count) {
-  const std::string expected = fmt::format("an array of {} to {} tables ([[{}]])", min_count,
-                                           max_count, path(key));
+  const std::string expected =
+      fmt::format("an array of {} to {} tables ([[{}]])", min_count, max_count, path(key));
   const toml::node* node = lookup(key, expected);
   if (node == nullptr) return {};
   const toml::array* arr = node->as_array();

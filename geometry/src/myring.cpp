@@ -14,7 +14,8 @@ MyringProfile::MyringProfile(const MyringParameters& p)
       length_(p.a - p.a_offset + p.b + p.c - p.c_offset) {}
 
 // Tail: r = d/2 - (3d/(2c^2) - tan(theta)/c) t^2 + (d/c^3 - tan(theta)/c^2) t^3, t = station - l_f.
-// Prestero's thesis prints (x - l) where t = x - l_f is meant; only the latter gives r = d/2 at l_f.
+// Prestero's thesis prints (x - l) where t = x - l_f is meant; only the latter gives r = d/2 at
+// l_f.
 double MyringProfile::radius(double station) const {
   const double x = std::clamp(station, 0.0, length_);
   const double r_max = p_.d / 2;

@@ -39,8 +39,7 @@ double NacaSection::half_thickness(double x) const {
   const double t = thickness_percent / 100.0;
   const double a4 = sharp_trailing_edge ? -0.1036 : -0.1015;
   x = std::clamp(x, 0.0, 1.0);
-  return 5.0 * t *
-         (0.2969 * std::sqrt(x) + x * (-0.1260 + x * (-0.3516 + x * (0.2843 + x * a4))));
+  return 5.0 * t * (0.2969 * std::sqrt(x) + x * (-0.1260 + x * (-0.3516 + x * (0.2843 + x * a4))));
 }
 
 double NacaSection::camber(double x) const {

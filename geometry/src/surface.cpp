@@ -34,15 +34,18 @@ class TriangleBuilder {
   // Adds (a, b, c) wound so that its normal points along `outward`; used on planar caps, where
   // every triangle is non-degenerate and the outward direction is known.
   void oriented(int a, int b, int c, const Eigen::Vector3d& outward) {
-    const Eigen::Vector3d n = (points_[static_cast<std::size_t>(b)] - points_[static_cast<std::size_t>(a)])
-                                  .cross(points_[static_cast<std::size_t>(c)] - points_[static_cast<std::size_t>(a)]);
+    const Eigen::Vector3d n =
+        (points_[static_cast<std::size_t>(b)] - points_[static_cast<std::size_t>(a)])
+            .cross(points_[static_cast<std::size_t>(c)] - points_[static_cast<std::size_t>(a)]);
     if (n.dot(outward) >= 0) {
       triangle(a, b, c);
     } else {
       triangle(a, c, b);
     }
   }
-  [[nodiscard]] const Eigen::Vector3d& point(int i) const { return points_[static_cast<std::size_t>(i)]; }
+  [[nodiscard]] const Eigen::Vector3d& point(int i) const {
+    return points_[static_cast<std::size_t>(i)];
+  }
 
   SurfaceMesh mesh(const std::string& what) const {
     SurfaceMesh m;
@@ -50,10 +53,12 @@ class TriangleBuilder {
     v.reserve(points_.size());
     for (const auto& p : points_) v.push_back(m.add_vertex(Point3(p.x(), p.y(), p.z())));
     for (const auto& t : triangles_) {
-      const auto f = m.add_face(v[static_cast<std::size_t>(t[0])], v[static_cast<std::size_t>(t[1])],
-                                v[static_cast<std::size_t>(t[2])]);
+      const auto f =
+          m.add_face(v[static_cast<std::size_t>(t[0])], v[static_cast<std::size_t>(t[1])],
+                     v[static_cast<std::size_t>(t[2])]);
       if (f == SurfaceMesh::null_face()) {
-        throw GeometryError(fmt::format("internal error: non-manifold triangle in the {} surface", what));
+        throw GeometryError(
+            fmt::format("internal error: non-manifold triangle in the {} surface", what));
       }
     }
     return m;
@@ -92,7 +97,8 @@ std::vector<std::vector<int>> loft(TriangleBuilder& tb, const std::vector<Loop>&
   const std::size_t n = loops.front().size();
   for (std::size_t k = 0; k + 1 < loops.size(); ++k) {
     for (std::size_t j = 0; j < n; ++j) {
-      const int a = ids[k][j], b = ids[k][(j + 1) % n], c = ids[k + 1][(j + 1) % n], d = ids[k + 1][j];
+      const int a = ids[k][j], b = ids[k][(j + 1) % n], c = ids[k + 1][(j + 1) % n],
+                d = ids[k + 1][j];
       if (!reverse) {
         tb.triangle(a, d, c);
         tb.triangle(a, c, b);
@@ -164,7 +170,8 @@ void disk_cap(TriangleBuilder& tb, const std::vector<int>& rim, double x, double
 std::vector<double> meridian_stations(const MyringProfile& profile, double edge_length) {
   constexpr int samples = 20000;
   std::vector<double> x(samples + 1), s(samples + 1, 0.0);
-  for (int i = 0; i <= samples; ++i) x[static_cast<std::size_t>(i)] = profile.length() * i / samples;
+  for (int i = 0; i <= samples; ++i)
+    x[static_cast<std::size_t>(i)] = profile.length() * i / samples;
   for (std::size_t i = 1; i < x.size(); ++i) {
     s[i] = s[i - 1] + std::hypot(x[i] - x[i - 1], profile.radius(x[i]) - profile.radius(x[i - 1]));
   }
@@ -244,14 +251,17 @@ SurfaceMesh fin_surface(const FinGeometry& fin, double deflection, SurfaceResolu
   for (std::size_t i = 0; i <= n_span; ++i) {
     rho.push_back(r_root + set.span * static_cast<double>(i) / static_cast<double>(n_span));
   }
-  // Loop: leading edge, upper surface aft, trailing edge (one point if sharp), lower surface forward.
+  // Loop: leading edge, upper surface aft, trailing edge (one point if sharp), lower surface
+  // forward.
   const std::size_t last_upper = sharp ? m - 1 : m;
   std::vector<Loop> loops;
   for (double r : rho) {
     Loop loop{fin.point(r, 0.0, 1, deflection)};
-    for (std::size_t i = 1; i <= last_upper; ++i) loop.push_back(fin.point(r, xc[i], 1, deflection));
+    for (std::size_t i = 1; i <= last_upper; ++i)
+      loop.push_back(fin.point(r, xc[i], 1, deflection));
     if (sharp) loop.push_back(fin.point(r, 1.0, 1, deflection));
-    for (std::size_t i = last_upper; i >= 1; --i) loop.push_back(fin.point(r, xc[i], -1, deflection));
+    for (std::size_t i = last_upper; i >= 1; --i)
+      loop.push_back(fin.point(r, xc[i], -1, deflection));
     loops.push_back(std::move(loop));
   }
   TriangleBuilder tb;
@@ -261,7 +271,8 @@ SurfaceMesh fin_surface(const FinGeometry& fin, double deflection, SurfaceResolu
   auto upper = [&](const std::vector<int>& row, std::size_t i) { return row[i]; };
   auto lower = [&](const std::vector<int>& row, std::size_t i) { return row[n - i]; };
   const Eigen::Vector3d e = fin.span_axis();
-  for (const auto& [row, outward] : {std::pair{ids.front(), Eigen::Vector3d(-e)}, std::pair{ids.back(), e}}) {
+  for (const auto& [row, outward] :
+       {std::pair{ids.front(), Eigen::Vector3d(-e)}, std::pair{ids.back(), e}}) {
     tb.oriented(row[0], upper(row, 1), lower(row, 1), outward);
     for (std::size_t i = 1; i < last_upper; ++i) {
       tb.oriented(upper(row, i), upper(row, i + 1), lower(row, i + 1), outward);
@@ -274,7 +285,8 @@ SurfaceMesh fin_surface(const FinGeometry& fin, double deflection, SurfaceResolu
   return tb.mesh("fin " + fin.name());
 }
 
-std::vector<SurfacePart> vehicle_parts(const Vehicle& vehicle, std::span<const double> fin_deflections,
+std::vector<SurfacePart> vehicle_parts(const Vehicle& vehicle,
+                                       std::span<const double> fin_deflections,
                                        SurfaceResolution res) {
   const auto& set = vehicle.fin_set;
   if (!fin_deflections.empty() && fin_deflections.size() != set.fins.size()) {
@@ -287,10 +299,10 @@ std::vector<SurfacePart> vehicle_parts(const Vehicle& vehicle, std::span<const d
   for (std::size_t i = 0; i < set.fins.size(); ++i) {
     const double delta = fin_deflections.empty() ? 0.0 : fin_deflections[i];
     if (std::abs(delta) > set.max_deflection * (1 + 1e-12)) {
-      throw GeometryError(fmt::format("fin \"{}\": deflection {:.3g} deg exceeds the vehicle's "
-                                      "max_deflection of {:.3g} deg",
-                                      set.fins[i].name, delta * 180 / kPi,
-                                      set.max_deflection * 180 / kPi));
+      throw GeometryError(
+          fmt::format("fin \"{}\": deflection {:.3g} deg exceeds the vehicle's "
+                      "max_deflection of {:.3g} deg",
+                      set.fins[i].name, delta * 180 / kPi, set.max_deflection * 180 / kPi));
     }
     const FinGeometry fin(set, set.fins[i], vehicle.mass.cb_station);
     parts.push_back({set.fins[i].name, fin_surface(fin, delta, res)});
@@ -304,9 +316,10 @@ SurfaceMesh merge_parts(std::span<const SurfacePart> parts) {
   for (std::size_t i = 1; i < parts.size(); ++i) {
     SurfaceMesh next = parts[i].mesh;
     if (!PMP::corefine_and_compute_union(result, next, result)) {
-      throw GeometryError(fmt::format("the union of \"{}\" with the parts before it is not a closed "
-                                      "manifold surface",
-                                      parts[i].name));
+      throw GeometryError(
+          fmt::format("the union of \"{}\" with the parts before it is not a closed "
+                      "manifold surface",
+                      parts[i].name));
     }
   }
   // Corefinement can leave needle triangles whose vertices are collinear in double precision
@@ -353,10 +366,17 @@ bool SurfaceDefects::ok() const {
 
 std::string SurfaceDefects::describe() const {
   std::vector<std::string> lines;
-  if (boundary_edges > 0) lines.push_back(fmt::format("the surface is open: {} boundary edges", boundary_edges));
-  if (non_manifold > 0) lines.push_back(fmt::format("the surface is not manifold: {} non-manifold edges or vertices", non_manifold));
-  if (misoriented_edges > 0) lines.push_back(fmt::format("faces are inconsistently oriented: {} edges traversed twice in the same direction", misoriented_edges));
-  if (degenerate_faces > 0) lines.push_back(fmt::format("{} degenerate (zero-area) faces", degenerate_faces));
+  if (boundary_edges > 0)
+    lines.push_back(fmt::format("the surface is open: {} boundary edges", boundary_edges));
+  if (non_manifold > 0)
+    lines.push_back(fmt::format("the surface is not manifold: {} non-manifold edges or vertices",
+                                non_manifold));
+  if (misoriented_edges > 0)
+    lines.push_back(fmt::format(
+        "faces are inconsistently oriented: {} edges traversed twice in the same direction",
+        misoriented_edges));
+  if (degenerate_faces > 0)
+    lines.push_back(fmt::format("{} degenerate (zero-area) faces", degenerate_faces));
   if (inward) lines.push_back("the surface is inside out: its normals point inward");
   if (self_intersecting) lines.push_back("the surface intersects itself");
   std::string s;

@@ -7,12 +7,12 @@
 
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
-#include <assimp/Exporter.hpp>
-#include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <fmt/format.h>
 #include <fmt/std.h>
+#include <assimp/Exporter.hpp>
+#include <assimp/Importer.hpp>
 
 #include "auvloop/geometry/error.hpp"
 
@@ -76,7 +76,8 @@ aiMesh* to_assimp(const SurfacePart& part) {
       if (j < 3) out.mIndices[j] = index.at(v);
       ++j;
     }
-    if (j != 3) throw GeometryError(fmt::format("part \"{}\" has a face that is not a triangle", part.name));
+    if (j != 3)
+      throw GeometryError(fmt::format("part \"{}\" has a face that is not a triangle", part.name));
   }
   return m;
 }
@@ -85,12 +86,12 @@ aiMesh* to_assimp(const SurfacePart& part) {
 std::unique_ptr<aiScene> make_scene(std::span<const SurfacePart> parts) {
   auto scene = std::make_unique<aiScene>();
   scene->mNumMaterials = 1;
-  scene->mMaterials = new aiMaterial*[1]{new aiMaterial()};
+  scene->mMaterials = new aiMaterial* [1] { new aiMaterial() };
   scene->mNumMeshes = static_cast<unsigned>(parts.size());
-  scene->mMeshes = new aiMesh*[parts.size()]{};
+  scene->mMeshes = new aiMesh* [parts.size()] {};
   scene->mRootNode = new aiNode("auvloop");
   scene->mRootNode->mNumChildren = static_cast<unsigned>(parts.size());
-  scene->mRootNode->mChildren = new aiNode*[parts.size()]{};
+  scene->mRootNode->mChildren = new aiNode* [parts.size()] {};
   for (unsigned i = 0; i < parts.size(); ++i) {
     scene->mMeshes[i] = to_assimp(parts[i]);
     auto* node = new aiNode(parts[i].name);
@@ -104,8 +105,8 @@ std::unique_ptr<aiScene> make_scene(std::span<const SurfacePart> parts) {
 
 fs::path scratch_directory(const fs::path& target) {
   std::random_device rd;
-  const fs::path dir = target.parent_path() /
-                       fmt::format(".{}.tmp-{:08x}", target.filename().string(), rd());
+  const fs::path dir =
+      target.parent_path() / fmt::format(".{}.tmp-{:08x}", target.filename().string(), rd());
   fs::create_directories(dir);
   return dir;
 }
@@ -130,11 +131,13 @@ void write_surface(const fs::path& path, std::span<const SurfacePart> parts) {
     const auto scene = make_scene(parts);
     Assimp::Exporter exporter;
     const fs::path staged = scratch / target.filename();
-    if (exporter.Export(scene.get(), std::string(format.assimp_id), staged.string()) != AI_SUCCESS) {
+    if (exporter.Export(scene.get(), std::string(format.assimp_id), staged.string()) !=
+        AI_SUCCESS) {
       throw GeometryError(fmt::format("{}: export failed: {}", path, exporter.GetErrorString()));
     }
     for (const auto& entry : fs::directory_iterator(scratch)) {
-      if (entry.path() != staged) fs::rename(entry.path(), target.parent_path() / entry.path().filename());
+      if (entry.path() != staged)
+        fs::rename(entry.path(), target.parent_path() / entry.path().filename());
     }
     fs::rename(staged, target);
     fs::remove_all(scratch);
@@ -163,7 +166,8 @@ void append_mesh(Soup& soup, const aiMesh& mesh, const aiMatrix4x4& transform, d
   std::vector<std::size_t> id(mesh.mNumVertices);
   for (unsigned i = 0; i < mesh.mNumVertices; ++i) {
     const aiVector3D v = transform * mesh.mVertices[i];
-    const std::array<double, 3> key{scale * static_cast<double>(v.x), scale * static_cast<double>(v.y),
+    const std::array<double, 3> key{scale * static_cast<double>(v.x),
+                                    scale * static_cast<double>(v.y),
                                     scale * static_cast<double>(v.z)};
     auto [it, inserted] = weld.emplace(key, soup.points.size());
     if (inserted) soup.points.emplace_back(key[0], key[1], key[2]);
@@ -190,20 +194,23 @@ void collect(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent
     append_mesh(soup, mesh, transform, scale);
     out.push_back(std::move(soup));
   }
-  for (unsigned i = 0; i < node.mNumChildren; ++i) collect(scene, *node.mChildren[i], transform, scale, out);
+  for (unsigned i = 0; i < node.mNumChildren; ++i)
+    collect(scene, *node.mChildren[i], transform, scale, out);
 }
 
 // Edge-use analysis of a triangle soup: what a half-edge mesh cannot even represent.
 SurfaceDefects soup_defects(const Soup& soup) {
   SurfaceDefects d;
-  std::map<std::pair<std::size_t, std::size_t>, std::array<int, 2>> uses;  // (lo, hi) -> {lo->hi, hi->lo}
+  std::map<std::pair<std::size_t, std::size_t>, std::array<int, 2>>
+      uses;  // (lo, hi) -> {lo->hi, hi->lo}
   for (const auto& t : soup.triangles) {
     if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) {
       ++d.degenerate_faces;
       continue;
     }
     for (int k = 0; k < 3; ++k) {
-      const std::size_t a = t[static_cast<std::size_t>(k)], b = t[static_cast<std::size_t>((k + 1) % 3)];
+      const std::size_t a = t[static_cast<std::size_t>(k)],
+                        b = t[static_cast<std::size_t>((k + 1) % 3)];
       ++uses[{std::min(a, b), std::max(a, b)}][a < b ? 0 : 1];
     }
   }
@@ -216,13 +223,16 @@ SurfaceDefects soup_defects(const Soup& soup) {
   return d;
 }
 
-SurfacePart to_part(const Soup& soup, const SurfaceReadOptions& options, std::vector<std::string>& problems) {
+SurfacePart to_part(const Soup& soup, const SurfaceReadOptions& options,
+                    std::vector<std::string>& problems) {
   SurfaceDefects d = soup_defects(soup);
   SurfacePart part{soup.name, {}};
   if (soup.non_triangles > 0) {
-    problems.push_back(fmt::format("part \"{}\": {} faces are lines or points, not triangles", soup.name, soup.non_triangles));
+    problems.push_back(fmt::format("part \"{}\": {} faces are lines or points, not triangles",
+                                   soup.name, soup.non_triangles));
   }
-  if (d.boundary_edges == 0 && d.non_manifold == 0 && d.misoriented_edges == 0 && d.degenerate_faces == 0) {
+  if (d.boundary_edges == 0 && d.non_manifold == 0 && d.misoriented_edges == 0 &&
+      d.degenerate_faces == 0) {
     if (!PMP::is_polygon_soup_a_polygon_mesh(soup.triangles)) {
       d.non_manifold = 1;  // pinched vertex: edges are fine, but a vertex joins two fans
     } else {
@@ -243,7 +253,8 @@ SurfacePart to_part(const Soup& soup, const SurfaceReadOptions& options, std::ve
   return part;
 }
 
-void check_extent(const fs::path& path, const std::vector<Soup>& soups, const SurfaceReadOptions& options) {
+void check_extent(const fs::path& path, const std::vector<Soup>& soups,
+                  const SurfaceReadOptions& options) {
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
   Eigen::Vector3d hi = -lo;
   for (const auto& s : soups) {
@@ -255,12 +266,14 @@ void check_extent(const fs::path& path, const std::vector<Soup>& soups, const Su
   const double extent = (hi - lo).maxCoeff();
   if (!(extent >= options.min_extent && extent <= options.max_extent)) {
     const double hint = extent > options.max_extent ? 0.001 : 1000.0;
-    throw GeometryError(fmt::format(
-        "{}: implausible size: the surface spans {:.6g} units, but auvloop reads metres and expects "
-        "a vehicle between {:g} m and {:g} m; if the file is in {} use a scale of {:g} "
-        "(--scale {:g})",
-        path, extent, options.min_extent, options.max_extent,
-        extent > options.max_extent ? "millimetres" : "kilometres or other large units", hint, hint));
+    throw GeometryError(
+        fmt::format("{}: implausible size: the surface spans {:.6g} units, but auvloop reads "
+                    "metres and expects "
+                    "a vehicle between {:g} m and {:g} m; if the file is in {} use a scale of {:g} "
+                    "(--scale {:g})",
+                    path, extent, options.min_extent, options.max_extent,
+                    extent > options.max_extent ? "millimetres" : "kilometres or other large units",
+                    hint, hint));
   }
 }
 
@@ -269,7 +282,8 @@ void check_extent(const fs::path& path, const std::vector<Soup>& soups, const Su
 std::vector<SurfacePart> read_surface(const fs::path& path, const SurfaceReadOptions& options) {
   std::error_code ec;
   if (!fs::exists(path, ec)) throw GeometryError(fmt::format("{}: no such file", path));
-  if (!fs::is_regular_file(path, ec)) throw GeometryError(fmt::format("{}: not a regular file", path));
+  if (!fs::is_regular_file(path, ec))
+    throw GeometryError(fmt::format("{}: not a regular file", path));
   if (fs::file_size(path, ec) == 0) throw GeometryError(fmt::format("{}: the file is empty", path));
   format_for(path);  // rejects unsupported extensions with the list of supported ones
   if (!(options.scale > 0)) throw GeometryError(fmt::format("{}: scale must be positive", path));
@@ -278,8 +292,9 @@ std::vector<SurfacePart> read_surface(const fs::path& path, const SurfaceReadOpt
   const aiScene* scene = importer.ReadFile(path.string(), aiProcess_Triangulate);
   if (scene == nullptr || scene->mRootNode == nullptr ||
       (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) != 0) {
-    throw GeometryError(fmt::format("{}: not a readable surface file: {}", path,
-                                    scene == nullptr ? importer.GetErrorString() : "incomplete scene"));
+    throw GeometryError(
+        fmt::format("{}: not a readable surface file: {}", path,
+                    scene == nullptr ? importer.GetErrorString() : "incomplete scene"));
   }
   std::vector<Soup> soups;
   collect(*scene, *scene->mRootNode, aiMatrix4x4(), options.scale, soups);

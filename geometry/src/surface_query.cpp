@@ -16,8 +16,12 @@ using Traits = CGAL::AABB_traits<Kernel, Primitive>;
 using Tree = CGAL::AABB_tree<Traits>;
 using SideOf = CGAL::Side_of_triangle_mesh<SurfaceMesh, Kernel>;
 
-Point3 to_cgal(const Eigen::Vector3d& p) { return {p.x(), p.y(), p.z()}; }
-Eigen::Vector3d to_eigen(const Point3& p) { return {p.x(), p.y(), p.z()}; }
+Point3 to_cgal(const Eigen::Vector3d& p) {
+  return {p.x(), p.y(), p.z()};
+}
+Eigen::Vector3d to_eigen(const Point3& p) {
+  return {p.x(), p.y(), p.z()};
+}
 }  // namespace
 
 struct SurfaceQuery::Impl {

@@ -6,8 +6,8 @@
 #include <set>
 #include <stdexcept>
 
-#include <Eigen/Eigenvalues>
 #include <fmt/format.h>
+#include <Eigen/Eigenvalues>
 
 #include "auvloop/geometry/fin.hpp"
 #include "auvloop/geometry/myring.hpp"
@@ -64,8 +64,8 @@ FinPlacement read_fin(Table t) {
                                               "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
                                               "0123456789_-") == std::string::npos;
   if (!name_ok) {
-    t.fail("name", fmt::format("\"{}\" is not a valid fin name: use letters, digits, '_' and '-'",
-                               f.name));
+    t.fail("name",
+           fmt::format("\"{}\" is not a valid fin name: use letters, digits, '_' and '-'", f.name));
   }
   return f;
 }
@@ -84,12 +84,12 @@ void check_fins_embedded(Table t, const FinSetParameters& set, const MyringProfi
           const double rho = std::hypot(p.y(), p.z());
           if (station < 0 || station > profile.length() || rho >= profile.radius(station)) {
             t.fail("embed_depth",
-                   fmt::format("at a deflection of {:g} deg the inner end of fin \"{}\" leaves the "
-                               "hull near station {:.4f} m (radius {:.4f} m, hull radius {:.4f} m): "
-                               "increase embed_depth or reduce max_deflection",
-                               delta / kDeg, placement.name, station, rho,
-                               station < 0 || station > profile.length() ? 0.0
-                                                                         : profile.radius(station)));
+                   fmt::format(
+                       "at a deflection of {:g} deg the inner end of fin \"{}\" leaves the "
+                       "hull near station {:.4f} m (radius {:.4f} m, hull radius {:.4f} m): "
+                       "increase embed_depth or reduce max_deflection",
+                       delta / kDeg, placement.name, station, rho,
+                       station < 0 || station > profile.length() ? 0.0 : profile.radius(station)));
             return;
           }
         }
@@ -105,8 +105,9 @@ FinSetParameters read_fins(Table t, const MyringProfile* profile) {
   if (auto parsed = NacaSection::parse(section)) {
     s.section = *parsed;
   } else if (!section.empty()) {
-    t.fail("section", fmt::format("\"{}\" is not a NACA four-digit designation such as \"NACA 0012\"",
-                                  section));
+    t.fail(
+        "section",
+        fmt::format("\"{}\" is not a NACA four-digit designation such as \"NACA 0012\"", section));
   }
   s.section.sharp_trailing_edge = te == "sharp";
   s.root_chord = t.number("root_chord", Range::positive(), "m");
@@ -141,7 +142,8 @@ FinSetParameters read_fins(Table t, const MyringProfile* profile) {
                                       s.root_radius()));
   } else if (profile != nullptr) {
     if (s.root_le_station >= profile->length()) {
-      t.fail("root_le_station", fmt::format("lies behind the tail end ({:g} m)", profile->length()));
+      t.fail("root_le_station",
+             fmt::format("lies behind the tail end ({:g} m)", profile->length()));
     } else if (t.has("fin") && !s.fins.empty()) {
       check_fins_embedded(t, s, *profile, /*cb_station=*/0.0);  // stations do not depend on it
     }
@@ -175,11 +177,13 @@ MassProperties read_mass(Table t, double hull_length) {
     } else {
       // A physical inertia tensor is positive definite and its principal moments satisfy the
       // triangle inequality I1 <= I2 + I3.
-      const Eigen::Vector3d I = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(m.inertia).eigenvalues();
+      const Eigen::Vector3d I =
+          Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(m.inertia).eigenvalues();
       if (I.minCoeff() <= 0) {
-        t.fail("inertia", fmt::format("principal moments ({:.4g}, {:.4g}, {:.4g}) kg m^2 must all be "
-                                      "positive",
-                                      I[0], I[1], I[2]));
+        t.fail("inertia",
+               fmt::format("principal moments ({:.4g}, {:.4g}, {:.4g}) kg m^2 must all be "
+                           "positive",
+                           I[0], I[1], I[2]));
       } else if (I[2] > I[0] + I[1] * (1 + 1e-9)) {
         t.fail("inertia", fmt::format("principal moments ({:.4g}, {:.4g}, {:.4g}) kg m^2 violate "
                                       "I3 <= I1 + I2: no rigid body has them",
@@ -204,7 +208,8 @@ PropellerParameters read_propeller(Table t, double tail_start) {
     t.fail("disk_thickness", fmt::format("must be smaller than diameter = {:g} m", p.diameter));
   }
   if (std::isfinite(tail_start) && p.station <= tail_start) {
-    t.fail("station", fmt::format("must lie on the tail or behind it (station > {:g} m)", tail_start));
+    t.fail("station",
+           fmt::format("must lie on the tail or behind it (station > {:g} m)", tail_start));
   }
   return p;
 }
@@ -227,7 +232,8 @@ Vehicle read_vehicle(Table root) {
     profile.emplace(v.hull);
   }
   const double length = profile ? profile->length() : std::numeric_limits<double>::quiet_NaN();
-  const double tail_start = profile ? profile->tail_start() : std::numeric_limits<double>::quiet_NaN();
+  const double tail_start =
+      profile ? profile->tail_start() : std::numeric_limits<double>::quiet_NaN();
   v.mass = read_mass(root.table("mass"), length);
   if (auto fins = root.optional_table("fins")) {
     v.fin_set = read_fins(*fins, profile ? &*profile : nullptr);
@@ -256,11 +262,14 @@ Vehicle load_vehicle(const std::filesystem::path& path) {
   return v;
 }
 
-std::vector<std::string> preset_names() { return {"remus100"}; }
+std::vector<std::string> preset_names() {
+  return {"remus100"};
+}
 
 std::string_view preset_text(std::string_view name) {
   if (name == "remus100") return embedded::remus100_toml;
-  throw std::invalid_argument(fmt::format("unknown vehicle preset \"{}\" (available: remus100)", name));
+  throw std::invalid_argument(
+      fmt::format("unknown vehicle preset \"{}\" (available: remus100)", name));
 }
 
 Vehicle preset_vehicle(std::string_view name) {
@@ -276,8 +285,8 @@ Vehicle resolve_vehicle(std::string_view spec) {
 
 double fin_deflection(const FinPlacement& fin, double delta_r, double delta_s) {
   // A small rotation delta about the outward post axis e_s = (0, sin roll, -cos roll) moves the
-  // trailing edge (along e_c = -x from the post) by delta * e_s x e_c = delta * (0, cos roll, sin roll).
-  // delta_r > 0 must move it to port (-y), delta_s > 0 down (+z).
+  // trailing edge (along e_c = -x from the post) by delta * e_s x e_c = delta * (0, cos roll, sin
+  // roll). delta_r > 0 must move it to port (-y), delta_s > 0 down (+z).
   auto snap = [](double g) { return std::abs(g) < 1e-12 ? 0.0 : g; };  // cos(pi/2) is 6e-17
   return snap(-std::cos(fin.roll)) * delta_r + snap(std::sin(fin.roll)) * delta_s;
 }

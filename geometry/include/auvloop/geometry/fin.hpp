@@ -31,8 +31,8 @@ class FinGeometry {
   [[nodiscard]] const Eigen::Vector3d& post_origin() const { return post_origin_; }
 
   [[nodiscard]] double inner_radius() const { return set_.root_radius() - set_.embed_depth; }
-  [[nodiscard]] double chord_at(double rho) const;       // m
-  [[nodiscard]] double le_offset_at(double rho) const;   // m aft of the post, leading edge
+  [[nodiscard]] double chord_at(double rho) const;      // m
+  [[nodiscard]] double le_offset_at(double rho) const;  // m aft of the post, leading edge
   // Body-frame point of the section surface at radius rho, chord fraction x in [0, 1], side +-1.
   [[nodiscard]] Eigen::Vector3d point(double rho, double x, int side, double deflection) const;
   // Rotation about the post axis taking undeflected points to the deflected fin.

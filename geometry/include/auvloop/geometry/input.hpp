@@ -3,9 +3,9 @@
 //
 // Every accessor checks type and range and records a Problem that names the file, line, column, the
 // dotted field path, the offending value and what is allowed; reading carries on so that one run
-// reports every mistake in the file at once. Document::check() throws InputError when any problem was
-// recorded. Table::finish() reports keys that no accessor asked for (with a "did you mean" hint),
-// so a typo is never silently ignored.
+// reports every mistake in the file at once. Document::check() throws InputError when any problem
+// was recorded. Table::finish() reports keys that no accessor asked for (with a "did you mean"
+// hint), so a typo is never silently ignored.
 //
 // Units: SI throughout. Angles are written in degrees by users and returned in radians by
 // Table::angle(); the unit string passed to the accessors only serves the error messages.

@@ -10,9 +10,9 @@ class MyringProfile {
  public:
   explicit MyringProfile(const MyringParameters& p);
 
-  [[nodiscard]] double length() const { return length_; }           // l = l_f + c - c_offset
-  [[nodiscard]] double nose_end() const { return nose_end_; }       // a - a_offset
-  [[nodiscard]] double tail_start() const { return tail_start_; }   // l_f = a - a_offset + b
+  [[nodiscard]] double length() const { return length_; }          // l = l_f + c - c_offset
+  [[nodiscard]] double nose_end() const { return nose_end_; }      // a - a_offset
+  [[nodiscard]] double tail_start() const { return tail_start_; }  // l_f = a - a_offset + b
   [[nodiscard]] double max_radius() const { return p_.d / 2; }
   // Radius (m) at a station (m aft of the nose tip), 0 <= station <= length().
   [[nodiscard]] double radius(double station) const;

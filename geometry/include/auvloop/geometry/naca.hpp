@@ -11,11 +11,11 @@
 namespace auvloop::geometry {
 
 struct NacaSection {
-  int max_camber_percent = 0;   // first digit: maximum camber, % chord
+  int max_camber_percent = 0;      // first digit: maximum camber, % chord
   int camber_position_tenths = 0;  // second digit: position of maximum camber, tenths of chord
-  int thickness_percent = 12;   // last two digits: maximum thickness, % chord
-  // Sharp: the closed-trailing-edge variant (x^4 coefficient -0.1036), so that the section ends in a
-  // point. Blunt: the classical coefficient -0.1015, leaving a trailing-edge base of 0.126 % t/c.
+  int thickness_percent = 12;      // last two digits: maximum thickness, % chord
+  // Sharp: the closed-trailing-edge variant (x^4 coefficient -0.1036), so that the section ends in
+  // a point. Blunt: the classical coefficient -0.1015, leaving a trailing-edge base of 0.126 % t/c.
   bool sharp_trailing_edge = true;
 
   // Accepts "NACA0012", "NACA 0012" or "0012" (case-insensitive).

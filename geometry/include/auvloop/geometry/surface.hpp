@@ -38,7 +38,8 @@ SurfaceMesh fin_surface(const FinGeometry& fin, double deflection, SurfaceResolu
 // Hull followed by every fin (file order), each a closed surface; fins deflected by
 // `fin_deflections` (rad, one per fin, or empty for all zero). Throws GeometryError when a
 // deflection exceeds the fin set's max_deflection or a fin root would leave the hull.
-std::vector<SurfacePart> vehicle_parts(const Vehicle& vehicle, std::span<const double> fin_deflections,
+std::vector<SurfacePart> vehicle_parts(const Vehicle& vehicle,
+                                       std::span<const double> fin_deflections,
                                        SurfaceResolution res);
 // The boolean union of closed parts: one closed, manifold, outward-oriented surface (CGAL
 // corefinement). Throws GeometryError if CGAL cannot produce it.

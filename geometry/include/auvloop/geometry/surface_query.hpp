@@ -14,9 +14,9 @@
 namespace auvloop::geometry {
 
 struct RayHit {
-  double distance = 0;               // m along the unit ray direction
-  Eigen::Vector3d point;             // m, body frame
-  Eigen::Vector3d normal;            // unit, outward normal of the face hit
+  double distance = 0;     // m along the unit ray direction
+  Eigen::Vector3d point;   // m, body frame
+  Eigen::Vector3d normal;  // unit, outward normal of the face hit
 };
 
 class SurfaceQuery {

@@ -4,8 +4,8 @@
 //
 // Frames. Hull positions along the axis are *stations*: metres aft of the (truncated) nose tip, the
 // coordinate of the Myring formulas. 3D geometry is built in the body frame of Fossen / SNAME:
-// origin at the centre of buoyancy (CB), x forward, y starboard, z down; x_body = cb_station - station.
-// Angles are radians here; users write degrees in the file.
+// origin at the centre of buoyancy (CB), x forward, y starboard, z down; x_body = cb_station -
+// station. Angles are radians here; users write degrees in the file.
 #pragma once
 
 #include <filesystem>
@@ -56,10 +56,10 @@ struct FinSetParameters {
 };
 
 struct MassProperties {
-  double mass = 0;         // kg
-  double buoyancy = 0;     // N
-  double gravity = 0;      // m/s^2
-  double cb_station = 0;   // m aft of nose: origin of the body frame
+  double mass = 0;                                       // kg
+  double buoyancy = 0;                                   // N
+  double gravity = 0;                                    // m/s^2
+  double cb_station = 0;                                 // m aft of nose: origin of the body frame
   Eigen::Vector3d cg_from_cb = Eigen::Vector3d::Zero();  // m, body axes
   Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();     // kg m^2 about CB, body axes (tensor)
   double water_density = 0;                              // kg/m^3
@@ -68,10 +68,10 @@ struct MassProperties {
 };
 
 struct PropellerParameters {
-  double diameter = 0;       // m
-  double hub_diameter = 0;   // m
-  double station = 0;        // m aft of nose: centre of the actuator disk
-  double disk_thickness = 0; // m, axial extent of the body-force disk
+  double diameter = 0;        // m
+  double hub_diameter = 0;    // m
+  double station = 0;         // m aft of nose: centre of the actuator disk
+  double disk_thickness = 0;  // m, axial extent of the body-force disk
 };
 
 struct Vehicle {
@@ -100,9 +100,9 @@ Vehicle preset_vehicle(std::string_view name);
 Vehicle resolve_vehicle(std::string_view spec);
 
 // Deflection of one fin (rad, right-handed about its outward post axis) produced by a rudder angle
-// delta_r and a stern-plane angle delta_s in Prestero's sign convention (delta_r > 0: trailing edges
-// to port; delta_s > 0: trailing edges down). For a cruciform set the gains are 0 or +-1; for an
-// X-tail they mix both.
+// delta_r and a stern-plane angle delta_s in Prestero's sign convention (delta_r > 0: trailing
+// edges to port; delta_s > 0: trailing edges down). For a cruciform set the gains are 0 or +-1; for
+// an X-tail they mix both.
 double fin_deflection(const FinPlacement& fin, double delta_r, double delta_s);
 
 }  // namespace auvloop::geometry
