@@ -50,7 +50,8 @@ TEST(GeometryCli, InfoJsonHasThePublishedFigures) {
   EXPECT_NEAR(h["tail_face_radius_m"].get<double>(), 0.0162, 5e-5);
   EXPECT_EQ(j["fins"]["count"], 4);
   EXPECT_EQ(j["fins"]["section"], "NACA 0012");
-  EXPECT_GT(j["triangulated"]["hull_and_fins"]["volume_m3"].get<double>(), h["volume_m3"].get<double>());
+  EXPECT_GT(j["triangulated"]["hull_and_fins"]["volume_m3"].get<double>(),
+            h["volume_m3"].get<double>());
 }
 
 TEST(GeometryCli, ExportWritesTheRequestedFormat) {
@@ -78,7 +79,7 @@ TEST(GeometryCli, BadVehicleFileExitsThreeWithFileAndLine) {
 }
 
 TEST(GeometryCli, UsageErrorsExitTwo) {
-  EXPECT_EQ(run("geometry export").exit_code, 2);                      // --out missing
+  EXPECT_EQ(run("geometry export").exit_code, 2);  // --out missing
   EXPECT_EQ(run("geometry export --out x.stl --rudder 5 --fin-deflection 1 2 3 4").exit_code, 2);
   EXPECT_EQ(run("geometry frobnicate").exit_code, 2);
   EXPECT_EQ(run("geometry info --edge-length -1").exit_code, 2);

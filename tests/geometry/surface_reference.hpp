@@ -18,12 +18,13 @@ namespace auvloop::test {
 // chord(rho)^2 times the area of the unit-chord section, 2 * integral of y_t.
 inline double fin_solid_volume(const geometry::FinGeometry& fin) {
   const auto& set = fin.set();
-  const double unit_area = 2 * geometry::integrate(
-                                   [&](double x) { return set.section.half_thickness(x); }, 0.0, 1.0, 4096);
+  const double unit_area =
+      2 *
+      geometry::integrate([&](double x) { return set.section.half_thickness(x); }, 0.0, 1.0, 4096);
   const double embedded = set.root_chord * set.root_chord * unit_area * set.embed_depth;
-  const double exposed = geometry::integrate(
-      [&](double rho) { return std::pow(fin.chord_at(rho), 2) * unit_area; }, set.root_radius(),
-      set.tip_radius, 16);
+  const double exposed =
+      geometry::integrate([&](double rho) { return std::pow(fin.chord_at(rho), 2) * unit_area; },
+                          set.root_radius(), set.tip_radius, 16);
   return embedded + exposed;
 }
 

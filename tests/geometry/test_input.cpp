@@ -28,7 +28,8 @@ std::string errors_of(const std::string& text, auto&& read) {
 }  // namespace
 
 TEST(Input, ReadsValuesAndConvertsDegrees) {
-  auto doc = Document::parse("x = 2\ny = 1.5\nangle = 90\nname = \"a\"\n[t]\nk = [1, 2]\n", "f.toml");
+  auto doc =
+      Document::parse("x = 2\ny = 1.5\nangle = 90\nname = \"a\"\n[t]\nk = [1, 2]\n", "f.toml");
   auto root = doc.root();
   EXPECT_DOUBLE_EQ(root.number("x", Range::positive(), "m"), 2.0);  // integers are numbers
   EXPECT_DOUBLE_EQ(root.number("y", Range::positive(), "m"), 1.5);
@@ -50,16 +51,14 @@ TEST(Input, OutOfRangeNamesFileLineFieldValueAndRange) {
 }
 
 TEST(Input, WrongTypeIsReported) {
-  const auto e = errors_of("span = \"long\"\n", [](auto& root) {
-    root.number("span", Range::positive(), "m");
-  });
+  const auto e = errors_of("span = \"long\"\n",
+                           [](auto& root) { root.number("span", Range::positive(), "m"); });
   EXPECT_THAT(e, HasSubstr("case.toml:1:1: span: expected a number, got a string ('long')"));
 }
 
 TEST(Input, UnknownKeyGetsSuggestion) {
-  const auto e = errors_of("spn = 1.0\n", [](auto& root) {
-    root.number_or("span", 1.0, Range::positive(), "m");
-  });
+  const auto e = errors_of("spn = 1.0\n",
+                           [](auto& root) { root.number_or("span", 1.0, Range::positive(), "m"); });
   EXPECT_THAT(e, HasSubstr("case.toml:1:1: spn: unknown key (did you mean \"span\"?)"));
 }
 
@@ -70,7 +69,9 @@ TEST(Input, MissingKeyNamesTheTable) {
     t.number("root_chord", Range::positive(), "m");
     t.finish();
   });
-  EXPECT_THAT(e, HasSubstr("case.toml:1:2: fins.root_chord: missing required key (expected a number, > 0 m)"));
+  EXPECT_THAT(
+      e,
+      HasSubstr("case.toml:1:2: fins.root_chord: missing required key (expected a number, > 0 m)"));
 }
 
 TEST(Input, AllProblemsReportedInFileOrder) {
@@ -89,9 +90,8 @@ TEST(Input, AllProblemsReportedInFileOrder) {
 }
 
 TEST(Input, ArrayElementErrorsPointAtTheElement) {
-  const auto e = errors_of("cg = [0.0,\n  \"z\", 0.1]\n", [](auto& root) {
-    root.numbers("cg", 3, 3, Range::any(), "m");
-  });
+  const auto e = errors_of("cg = [0.0,\n  \"z\", 0.1]\n",
+                           [](auto& root) { root.numbers("cg", 3, 3, Range::any(), "m"); });
   EXPECT_THAT(e, HasSubstr("case.toml:2:3: cg[1]: expected a number"));
 }
 

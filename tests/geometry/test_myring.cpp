@@ -61,6 +61,8 @@ TEST(Myring, SlopeMatchesFiniteDifferences) {
 
 TEST(Myring, GaussLegendreQuadratureMatchesClosedForms) {
   // 8-point Gauss-Legendre is exact for polynomials up to degree 15 on one panel.
-  EXPECT_NEAR(integrate([](double x) { return std::sin(x); }, 0.0, std::numbers::pi, 8), 2.0, 1e-14);
-  EXPECT_NEAR(integrate([](double x) { return x * x * x * x * x * x * x; }, 0.0, 1.0, 1), 0.125, 1e-15);
+  EXPECT_NEAR(integrate([](double x) { return std::sin(x); }, 0.0, std::numbers::pi, 8), 2.0,
+              1e-14);
+  EXPECT_NEAR(integrate([](double x) { return x * x * x * x * x * x * x; }, 0.0, 1.0, 1), 0.125,
+              1e-15);
 }

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <numbers>
 
-#include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 
 #include "auvloop/geometry/error.hpp"
 #include "auvloop/geometry/surface.hpp"
@@ -48,7 +48,8 @@ TEST(Surface, HullVolumeConvergesAtSecondOrder) {
   }
   for (std::size_t i = 1; i < error.size(); ++i) {
     const double order = std::log2(error[i - 1] / error[i]);
-    EXPECT_NEAR(order, 2.0, 0.15) << "refinement " << i << ": errors " << error[i - 1] << " -> " << error[i];
+    EXPECT_NEAR(order, 2.0, 0.15) << "refinement " << i << ": errors " << error[i - 1] << " -> "
+                                  << error[i];
   }
 }
 

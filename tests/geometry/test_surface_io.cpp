@@ -66,7 +66,8 @@ TEST_P(RoundTrip, PreservesVolumeAndArea) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Formats, RoundTrip, ::testing::Values(".stl", ".obj", ".ply", ".gltf", ".glb"),
+INSTANTIATE_TEST_SUITE_P(Formats, RoundTrip,
+                         ::testing::Values(".stl", ".obj", ".ply", ".gltf", ".glb"),
                          [](const auto& param_info) { return param_info.param.substr(1); });
 
 TEST(SurfaceIo, PartsKeepTheirNames) {
@@ -89,7 +90,8 @@ TEST(SurfaceIo, OpenSurfaceIsReported) {
   auvloop::test::TempDir dir;
   Tetra t;
   t.faces.pop_back();
-  EXPECT_THAT(read_error(dir.write("open.stl", t.stl())), HasSubstr("the surface is open: 3 boundary edges"));
+  EXPECT_THAT(read_error(dir.write("open.stl", t.stl())),
+              HasSubstr("the surface is open: 3 boundary edges"));
 }
 
 TEST(SurfaceIo, InconsistentOrientationIsReported) {
@@ -135,9 +137,11 @@ TEST(SurfaceIo, GarbageEmptyAndUnknownFilesAreReported) {
     garbage += static_cast<char>(state >> 24);
   }
   EXPECT_THAT(read_error(dir.write("garbage.stl", garbage)), HasSubstr("garbage.stl"));
-  EXPECT_THAT(read_error(dir.write("garbage.glb", garbage)), HasSubstr("not a readable surface file"));
+  EXPECT_THAT(read_error(dir.write("garbage.glb", garbage)),
+              HasSubstr("not a readable surface file"));
   EXPECT_THAT(read_error(dir.write("empty.obj", "")), HasSubstr("the file is empty"));
-  EXPECT_THAT(read_error(dir.write("model.step", "x")), HasSubstr("unsupported surface format \".step\""));
+  EXPECT_THAT(read_error(dir.write("model.step", "x")),
+              HasSubstr("unsupported surface format \".step\""));
   EXPECT_THAT(read_error(dir.path() / "missing.stl"), HasSubstr("no such file"));
 }
 

@@ -42,7 +42,8 @@ class MeridianDistance {
       const double t = std::clamp((q - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
       best = std::min(best, (a + t * ab - q).norm());
     }
-    const bool inside = station >= 0 && station <= profile_.length() && rho <= profile_.radius(station);
+    const bool inside =
+        station >= 0 && station <= profile_.length() && rho <= profile_.radius(station);
     return inside ? -best : best;
   }
 
@@ -61,7 +62,8 @@ TEST(SurfaceQuery, HullAgreesWithTheAnalyticProfile) {
   // (radius of curvature at the nose shoulder): 6.6e-5 m at h = 5 mm. Allow 1.5 times that.
   const double tol = 1.5 * h * h / (8 * 0.0955 * 0.0955 / 0.191);
   std::mt19937 rng(7);
-  std::uniform_real_distribution<double> station(-0.05, 1.3827), rho(0.0, 0.12), angle(0, 2 * std::numbers::pi);
+  std::uniform_real_distribution<double> station(-0.05, 1.3827), rho(0.0, 0.12),
+      angle(0, 2 * std::numbers::pi);
   int checked_inside = 0;
   for (int i = 0; i < 400; ++i) {
     const double s = station(rng), r = rho(rng), th = angle(rng);
@@ -80,7 +82,7 @@ TEST(SurfaceQuery, ClosestPointLiesOnTheSurface) {
   const MyringProfile profile(remus().hull);
   const SurfaceQuery query(hull_surface(profile, kCb, {0.01}));
   for (const Eigen::Vector3d& p : {Eigen::Vector3d(0.0, 0.3, 0.1), Eigen::Vector3d(-0.6, 0.01, 0.0),
-                                  Eigen::Vector3d(1.0, 0.0, 0.0)}) {
+                                   Eigen::Vector3d(1.0, 0.0, 0.0)}) {
     const Eigen::Vector3d c = query.closest_point(p);
     EXPECT_NEAR(std::abs(query.signed_distance(c)), 0.0, 1e-12);
     EXPECT_NEAR((c - p).norm(), std::abs(query.signed_distance(p)), 1e-12);
@@ -109,7 +111,8 @@ TEST(SurfaceQuery, FinAgreesWithTheNacaThickness) {
     const FinGeometry fin(set, set.fins[1], kCb);
     const SurfaceQuery query(fin_surface(fin, delta, {0.002}));
     std::mt19937 rng(11);
-    std::uniform_real_distribution<double> rho(set.root_radius() - 0.02, set.tip_radius - 0.002), x(0.02, 0.98);
+    std::uniform_real_distribution<double> rho(set.root_radius() - 0.02, set.tip_radius - 0.002),
+        x(0.02, 0.98);
     for (int i = 0; i < 200; ++i) {
       const double r = rho(rng), xc = x(rng);
       const int side = i % 2 == 0 ? 1 : -1;

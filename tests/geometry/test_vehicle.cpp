@@ -40,7 +40,8 @@ std::string load_error(const std::string& text) {
 
 int line_of(const std::string& text, const std::string& needle) {
   const auto pos = text.find(needle);
-  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(pos), '\n'));
+  return 1 +
+         static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(pos), '\n'));
 }
 }  // namespace
 
@@ -52,7 +53,8 @@ TEST(Vehicle, PresetMatchesPrestero) {
   EXPECT_EQ(v.fin_set.fins.size(), 4U);
   EXPECT_EQ(v.fin_set.section.thickness_percent, 12);
   EXPECT_NEAR(v.fin_set.root_radius(), 0.131 - 0.0857, 1e-15);
-  EXPECT_NEAR(v.fin_set.post_station - v.mass.cb_station, 0.638, 1e-12);  // Prestero: -0.638 m wrt CB
+  EXPECT_NEAR(v.fin_set.post_station - v.mass.cb_station, 0.638,
+              1e-12);  // Prestero: -0.638 m wrt CB
   EXPECT_NEAR(v.mass.weight(), 299.0, 0.05);
   EXPECT_DOUBLE_EQ(v.mass.inertia(2, 2), 3.45);
   EXPECT_DOUBLE_EQ(v.mass.cg_from_cb.z(), 0.0196);
@@ -71,8 +73,9 @@ TEST(Vehicle, RudderAndSternPlaneGainsFollowPrestero) {
 TEST(Vehicle, UnknownKeyRejectedWithLine) {
   const auto text = preset_with("span = 0.0857", "span = 0.0857\nspam = 1");
   const auto e = load_error(text);
-  EXPECT_THAT(e, HasSubstr(fmt::format("vehicle.toml:{}:1: fins.spam: unknown key (did you mean \"span\"?)",
-                                       line_of(text, "spam"))));
+  EXPECT_THAT(
+      e, HasSubstr(fmt::format("vehicle.toml:{}:1: fins.spam: unknown key (did you mean \"span\"?)",
+                               line_of(text, "spam"))));
 }
 
 TEST(Vehicle, WrongTypeRejectedWithLine) {
@@ -85,8 +88,9 @@ TEST(Vehicle, WrongTypeRejectedWithLine) {
 TEST(Vehicle, OutOfRangeRejectedWithLineValueAndRange) {
   const auto text = preset_with("d = 0.191", "d = -0.191");
   EXPECT_THAT(load_error(text),
-              HasSubstr(fmt::format("vehicle.toml:{}:1: hull.d: value -0.191 is out of range: must be > 0 m",
-                                    line_of(text, "d = -0.191"))));
+              HasSubstr(fmt::format(
+                  "vehicle.toml:{}:1: hull.d: value -0.191 is out of range: must be > 0 m",
+                  line_of(text, "d = -0.191"))));
   EXPECT_THAT(load_error(preset_with("max_deflection = 35", "max_deflection = 95")),
               HasSubstr("fins.max_deflection: value 95 is out of range: must be in [0, 90) deg"));
 }
@@ -134,8 +138,8 @@ TEST(Naca, ParsesDesignations) {
 }
 
 TEST(Naca, ThicknessFormula) {
-  // Abbott & von Doenhoff: y_t = 5 t (0.2969 sqrt(x) - 0.1260 x - 0.3516 x^2 + 0.2843 x^3 - 0.1015 x^4),
-  // maximum 0.5 t near x = 0.30; the sharp variant closes the trailing edge.
+  // Abbott & von Doenhoff: y_t = 5 t (0.2969 sqrt(x) - 0.1260 x - 0.3516 x^2 + 0.2843 x^3 - 0.1015
+  // x^4), maximum 0.5 t near x = 0.30; the sharp variant closes the trailing edge.
   NacaSection blunt = *NacaSection::parse("0012");
   blunt.sharp_trailing_edge = false;
   EXPECT_NEAR(blunt.half_thickness(0.3), 0.06002, 2e-5);
