@@ -8,8 +8,11 @@ target_compile_options(auvloop_options INTERFACE
 # GCC 12 at -O2/-O3 reports false positives inside libstdc++ and CGAL templates: -Wrestrict on
 # std::string concatenation (GCC bug 105329), -Wmaybe-uninitialized on aggregates holding strings,
 # and -Wnull-dereference on std::pair in inlined container code. They are not in our code.
+# -Wmissing-field-initializers fires on designated initializers that leave defaulted members out
+# ({.dt = 0.01}), which GCC 13 accepts silently (PR c++/96868).
 if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU" AND CMAKE_CXX_COMPILER_VERSION VERSION_LESS 13)
-  target_compile_options(auvloop_options INTERFACE -Wno-restrict -Wno-maybe-uninitialized)
+  target_compile_options(auvloop_options INTERFACE -Wno-restrict -Wno-maybe-uninitialized
+    -Wno-missing-field-initializers)
 else()
   target_compile_options(auvloop_options INTERFACE -Wnull-dereference)
 endif()

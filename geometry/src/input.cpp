@@ -191,6 +191,15 @@ bool Table::has(std::string_view key) const {
   return table_->contains(key);
 }
 
+bool Table::is_table(std::string_view key) const {
+  const toml::node* node = table_->get(key);
+  return node != nullptr && node->is_table();
+}
+
+void Table::ignore(std::string_view key) {
+  used_->emplace(key);
+}
+
 std::string Table::path(std::string_view key) const {
   return prefix_.empty() ? std::string(key) : prefix_ + "." + std::string(key);
 }

@@ -239,6 +239,8 @@ Vehicle read_vehicle(Table root) {
     v.fin_set = read_fins(*fins, profile ? &*profile : nullptr);
   }
   v.propeller = read_propeller(root.table("propeller"), tail_start);
+  // The hydrodynamic model of the same file is read by the engine (engine/vehicle_model.hpp).
+  root.ignore("hydrodynamics");
   return v;
 }
 

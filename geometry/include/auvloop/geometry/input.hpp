@@ -73,6 +73,9 @@ class Document;
 class Table {
  public:
   [[nodiscard]] bool has(std::string_view key) const;
+  [[nodiscard]] bool is_table(std::string_view key) const;
+  // Marks a key as read by someone else (another module reads that part of the same file).
+  void ignore(std::string_view key);
   [[nodiscard]] std::string path(std::string_view key) const;
 
   double number(std::string_view key, Range range, std::string_view unit);

@@ -1,0 +1,89 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The closed loop with one dt for everything, in the order of the paper (section 4.2) and
+// shared/design/README.md. At t_k:
+//   1. the sensors hand over the state of t_k (from the previous step),
+//   2. the manoeuvre (a controller or an open-loop schedule) computes the commands,
+//   3. the actuators advance: x_{k+1} = c_k + (x_k - c_k) exp(-dt / T), amplitude and rate limits,
+//   4. the plant advances from t_k to t_{k+1} holding x_{k+1},
+//   5. the sensors integrate the plant's accelerations and rates into the state of t_{k+1}.
+// Every signal is recorded at every t_k, angles in degrees. A plant failure stops the run; what
+// was recorded up to the last good step is kept and the failure is reported.
+#pragma once
+
+#include <functional>
+#include <limits>
+#include <optional>
+#include <string>
+
+#include "auvloop/engine/actuator.hpp"
+#include "auvloop/engine/pid.hpp"
+#include "auvloop/engine/plant.hpp"
+#include "auvloop/engine/sensors.hpp"
+#include "auvloop/engine/time_series.hpp"
+
+namespace auvloop::engine {
+
+struct Commands {
+  double delta_r = 0;  // rad, Prestero's sign
+  double delta_s = 0;  // rad
+  double rpm = 0;
+  double psi_desired = std::numeric_limits<double>::quiet_NaN();  // rad, when a heading is tracked
+};
+
+class Manoeuvre {
+ public:
+  virtual ~Manoeuvre() = default;
+  virtual Commands command(double t, const Measurements& m, double dt) = 0;
+};
+
+// Heading step: the PID tracks psi_desired from t = 0; propeller speed is held at `rpm`.
+// The PID's turn command u (> 0: to starboard) becomes delta_r = -u in Prestero's sign convention.
+class HeadingStep final : public Manoeuvre {
+ public:
+  HeadingStep(double psi_desired, PidGains gains, PidOptions options, double rpm);
+  Commands command(double t, const Measurements& m, double dt) override;
+
+ private:
+  double psi_desired_, rpm_;
+  HeadingPid pid_;
+};
+
+// Open-loop ramp: from t = start, the rudder (or stern-plane) command moves at `rate` until it
+// reaches `angle`, then holds (Prestero's yaw and pitch tests: 10 deg/s to 4 deg).
+class RudderRamp final : public Manoeuvre {
+ public:
+  enum class Surface { rudder, stern_plane };
+  RudderRamp(Surface surface, double angle, double rate, double start, double rpm);
+  Commands command(double t, const Measurements& m, double dt) override;
+
+ private:
+  Surface surface_;
+  double angle_, rate_, start_, rpm_;
+};
+
+struct Actuators {
+  FirstOrderActuator rudder;
+  FirstOrderActuator stern_plane;
+  FirstOrderActuator propeller;  // rpm
+  [[nodiscard]] ActuatorValues values() const {
+    return {rudder.value(), stern_plane.value(), propeller.value()};
+  }
+};
+
+struct LoopSettings {
+  double dt = 0.01;                        // s, for controller, actuators, plant and sensors alike
+  double duration = 30;                    // s
+  std::function<void(double t)> progress;  // called now and then with the simulated time
+};
+
+struct LoopResult {
+  TimeSeries series;
+  std::optional<std::string> failure;  // set when the plant diverged; series ends at last good step
+  double final_time = 0;
+};
+
+LoopResult run_closed_loop(Plant& plant, Sensors& sensors, Manoeuvre& manoeuvre,
+                           Actuators& actuators, const BodyState& initial,
+                           const LoopSettings& settings);
+
+}  // namespace auvloop::engine

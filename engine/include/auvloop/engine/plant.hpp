@@ -1,0 +1,46 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The Plant: what the closed loop drives. The derivative (Prestero) plant, its linearisation and,
+// later, the CFD plant all implement it, so the same controller, actuators and sensors run on each.
+//
+// Contract: advance() moves the vehicle from t_k to t_k + dt holding the actuator values constant
+// over the step, and returns the new state with the body-frame accelerations nu' at t_k + dt (what
+// a DFBI solver reports and what the virtual INS integrates). A plant that cannot continue (NaN,
+// runaway speed, a diverged flow solution) returns an error instead of a state; its last good state
+// stays available through state().
+#pragma once
+
+#include <memory>
+#include <string>
+#include <variant>
+
+#include "auvloop/engine/rigid_body.hpp"
+
+namespace auvloop::engine {
+
+struct ActuatorValues {
+  double delta_r = 0;  // rudder angle (rad), Prestero's sign: > 0 turns the nose to port
+  double delta_s = 0;  // stern-plane angle (rad), > 0 pitches the nose down
+  double rpm = 0;      // propeller speed (rev/min)
+};
+
+struct PlantStep {
+  BodyState state;
+  Vector6d acceleration = Vector6d::Zero();  // u' v' w' (m/s^2), p' q' r' (rad/s^2), body frame
+};
+
+struct PlantFailure {
+  std::string reason;  // e.g. "speed 41.2 m/s exceeds the runaway limit of 20 m/s"
+};
+
+using PlantResult = std::variant<PlantStep, PlantFailure>;
+
+class Plant {
+ public:
+  virtual ~Plant() = default;
+  [[nodiscard]] virtual std::string name() const = 0;
+  virtual void reset(const BodyState& initial) = 0;
+  virtual PlantResult advance(const ActuatorValues& actuators, double dt) = 0;
+  [[nodiscard]] virtual const BodyState& state() const = 0;
+};
+
+}  // namespace auvloop::engine

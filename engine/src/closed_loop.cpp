@@ -1,0 +1,119 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "auvloop/engine/closed_loop.hpp"
+
+#include <cmath>
+#include <numbers>
+
+#include <fmt/format.h>
+
+namespace auvloop::engine {
+namespace {
+constexpr double kDeg = 180.0 / std::numbers::pi;
+
+// The recorded columns, in file order.
+class Recorder {
+ public:
+  Recorder() {
+    for (const auto& [name, unit] : kColumns) series.add(name, unit);
+  }
+  void record(double t, const BodyState& truth, const Measurements& m, const Commands& c,
+              const ActuatorValues& a) {
+    const EulerAngles e = truth.euler();
+    const double psi_d = std::isnan(c.psi_desired) ? std::nan("") : c.psi_desired * kDeg;
+    const double values[] = {t,
+                             psi_d,
+                             m.attitude.psi * kDeg,
+                             e.psi * kDeg,
+                             std::isnan(c.psi_desired)
+                                 ? std::nan("")
+                                 : heading_error(c.psi_desired, m.attitude.psi) * kDeg,
+                             c.delta_r * kDeg,
+                             a.delta_r * kDeg,
+                             c.delta_s * kDeg,
+                             a.delta_s * kDeg,
+                             c.rpm,
+                             a.rpm,
+                             truth.u(),
+                             truth.v(),
+                             truth.w(),
+                             truth.p() * kDeg,
+                             truth.q() * kDeg,
+                             truth.r() * kDeg,
+                             e.phi * kDeg,
+                             e.theta * kDeg,
+                             truth.position.x(),
+                             truth.position.y(),
+                             truth.position.z(),
+                             truth.nu.head<3>().norm(),
+                             std::atan2(truth.v(), truth.u()) * kDeg};
+    for (std::size_t i = 0; i < std::size(values); ++i) series.push(i, values[i]);
+  }
+  TimeSeries series;
+
+ private:
+  static constexpr std::pair<const char*, const char*> kColumns[] = {
+      {"t", "s"},         {"psi_d", "deg"},       {"psi", "deg"},     {"psi_true", "deg"},
+      {"e", "deg"},       {"delta_r_cmd", "deg"}, {"delta_r", "deg"}, {"delta_s_cmd", "deg"},
+      {"delta_s", "deg"}, {"rpm_cmd", "rev/min"}, {"rpm", "rev/min"}, {"u", "m/s"},
+      {"v", "m/s"},       {"w", "m/s"},           {"p", "deg/s"},     {"q", "deg/s"},
+      {"r", "deg/s"},     {"phi", "deg"},         {"theta", "deg"},   {"x_north", "m"},
+      {"y_east", "m"},    {"z_down", "m"},        {"speed", "m/s"},   {"beta", "deg"}};
+};
+}  // namespace
+
+HeadingStep::HeadingStep(double psi_desired, PidGains gains, PidOptions options, double rpm)
+    : psi_desired_(psi_desired), rpm_(rpm), pid_(gains, options) {}
+
+Commands HeadingStep::command(double, const Measurements& m, double dt) {
+  Commands c;
+  c.psi_desired = psi_desired_;
+  c.delta_r = -pid_.update(psi_desired_, m.attitude.psi, dt);
+  c.rpm = rpm_;
+  return c;
+}
+
+RudderRamp::RudderRamp(Surface surface, double angle, double rate, double start, double rpm)
+    : surface_(surface), angle_(angle), rate_(rate), start_(start), rpm_(rpm) {}
+
+Commands RudderRamp::command(double t, const Measurements&, double) {
+  const double ramp = std::clamp((t - start_) * rate_, 0.0, std::abs(angle_));
+  Commands c;
+  (surface_ == Surface::rudder ? c.delta_r : c.delta_s) = std::copysign(ramp, angle_);
+  c.rpm = rpm_;
+  return c;
+}
+
+LoopResult run_closed_loop(Plant& plant, Sensors& sensors, Manoeuvre& manoeuvre,
+                           Actuators& actuators, const BodyState& initial,
+                           const LoopSettings& settings) {
+  const double dt = settings.dt;
+  const auto steps = static_cast<long>(std::llround(settings.duration / dt));
+  plant.reset(initial);
+  sensors.reset(initial, actuators.values());
+  Recorder recorder;
+  LoopResult result;
+  for (long k = 0;; ++k) {
+    const double t = static_cast<double>(k) * dt;
+    const Measurements& m = sensors.read();          // 1
+    const Commands c = manoeuvre.command(t, m, dt);  // 2
+    recorder.record(t, plant.state(), m, c, actuators.values());
+    result.final_time = t;
+    if (k == steps) break;
+    actuators.rudder.step(c.delta_r, dt);  // 3
+    actuators.stern_plane.step(c.delta_s, dt);
+    actuators.propeller.step(c.rpm, dt);
+    const ActuatorValues applied = actuators.values();
+    const PlantResult r = plant.advance(applied, dt);  // 4
+    if (const auto* failure = std::get_if<PlantFailure>(&r)) {
+      result.failure = fmt::format("the {} plant diverged between t = {:.4g} s and {:.4g} s: {}",
+                                   plant.name(), t, t + dt, failure->reason);
+      break;
+    }
+    sensors.update(std::get<PlantStep>(r), applied, dt);  // 5
+    if (settings.progress && k % 100 == 0) settings.progress(t);
+  }
+  result.series = std::move(recorder.series);
+  return result;
+}
+
+}  // namespace auvloop::engine
