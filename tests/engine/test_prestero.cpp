@@ -155,3 +155,27 @@ TEST(Prestero, DivergenceIsReportedNotThrown) {
   EXPECT_TRUE(plant.state().nu.allFinite());
   EXPECT_LE(plant.state().u(), 1.6);
 }
+
+TEST(Sensors, VirtualInsTracksTheTrueStateThroughATurn) {
+  // The INS integrates the plant's accelerations and rates; over a 20 s, 180 deg turn with
+  // dt = 0.01 s its heading and speed stay within the trapezoidal integration error.
+  const PresteroModel model(remus().vehicle, remus().hydrodynamics);
+  DerivativePlant plant(model);
+  VirtualIns ins;
+  RudderRamp ramp(RudderRamp::Surface::rudder, 13.6 * kDeg, 10 * kDeg, 0.0, 1500);
+  Actuators act{FirstOrderActuator({}, 0.0), FirstOrderActuator({}, 0.0),
+                FirstOrderActuator({}, 1500)};
+  BodyState initial;
+  initial.nu[0] = 1.54;
+  const auto result = run_closed_loop(plant, ins, ramp, act, initial, {.dt = 0.01, .duration = 20});
+  ASSERT_FALSE(result.failure);
+  const auto& psi = result.series["psi"].values;
+  const auto& truth = result.series["psi_true"].values;
+  double worst = 0;
+  for (std::size_t i = 0; i < psi.size(); ++i) {
+    worst =
+        std::max(worst, std::abs(auvloop::engine::wrap_angle((psi[i] - truth[i]) * kDeg)) / kDeg);
+  }
+  EXPECT_LT(worst, 0.01);  // deg
+  EXPECT_GT(std::abs(truth.back() - truth.front()), 90.0);
+}
