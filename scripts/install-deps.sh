@@ -16,6 +16,8 @@ packages=(
   libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler libsqlite3-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
+  # results: plots (PNG and SVG through cairo) and content hashes
+  gnuplot-nox fonts-dejavu-core libssl-dev
 )
 # shellcheck disable=SC2206
 packages+=(${AUVLOOP_EXTRA_PACKAGES:-})

@@ -28,7 +28,9 @@ int main(int argc, char** argv) {
   app.footer(kFooter);
   app.require_subcommand(1);
   app.set_version_flag("--version", "auvloop 0.1.0");
+  int exit_code = cli::kOk;
   cli::register_geometry_commands(app);
+  cli::register_run_commands(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -49,9 +51,12 @@ int main(int argc, char** argv) {
   } catch (const std::filesystem::filesystem_error& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return cli::kFailed;
+  } catch (const std::runtime_error& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return cli::kFailed;
   } catch (const std::exception& e) {
     fmt::print(stderr, "internal error: {}\n", e.what());
     return cli::kInternalError;
   }
-  return cli::kOk;
+  return exit_code;
 }

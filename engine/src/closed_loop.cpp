@@ -83,6 +83,19 @@ Commands RudderRamp::command(double t, const Measurements&, double) {
   return c;
 }
 
+ZigZag::ZigZag(double rudder, double switch_heading, double initial_heading, double rpm)
+    : rudder_(rudder), switch_(switch_heading), psi0_(initial_heading), rpm_(rpm) {}
+
+Commands ZigZag::command(double, const Measurements& m, double) {
+  const double change = wrap_angle(m.attitude.psi - psi0_);
+  if (direction_ > 0 && change >= switch_) direction_ = -1;
+  if (direction_ < 0 && change <= -switch_) direction_ = 1;
+  Commands c;
+  c.delta_r = -direction_ * rudder_;  // Prestero: delta_r < 0 turns to starboard
+  c.rpm = rpm_;
+  return c;
+}
+
 LoopResult run_closed_loop(Plant& plant, Sensors& sensors, Manoeuvre& manoeuvre,
                            Actuators& actuators, const BodyState& initial,
                            const LoopSettings& settings) {

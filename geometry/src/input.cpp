@@ -141,7 +141,7 @@ Document Document::parse(std::string_view text, std::string source_name) {
   return Document(std::move(state));
 }
 
-Document Document::load(const std::filesystem::path& path) {
+std::string read_file(const std::filesystem::path& path) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) {
     throw InputError({Problem{{path.string(), 0, 0}, "", "no such file"}});
@@ -153,7 +153,11 @@ Document Document::load(const std::filesystem::path& path) {
   if (!in) throw InputError({Problem{{path.string(), 0, 0}, "", "cannot be opened for reading"}});
   std::ostringstream buffer;
   buffer << in.rdbuf();
-  return parse(buffer.str(), path.string());
+  return buffer.str();
+}
+
+Document Document::load(const std::filesystem::path& path) {
+  return parse(read_file(path), path.string());
 }
 
 Table Document::root() {

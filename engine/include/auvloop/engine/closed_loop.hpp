@@ -61,6 +61,18 @@ class RudderRamp final : public Manoeuvre {
   double angle_, rate_, start_, rpm_;
 };
 
+// ITTC zig-zag: the rudder goes to `rudder` for a turn to starboard first, and reverses each time
+// the heading change from the initial heading passes +-switch_heading.
+class ZigZag final : public Manoeuvre {
+ public:
+  ZigZag(double rudder, double switch_heading, double initial_heading, double rpm);
+  Commands command(double t, const Measurements& m, double dt) override;
+
+ private:
+  double rudder_, switch_, psi0_, rpm_;
+  int direction_ = 1;  // +1: turning to starboard
+};
+
 struct Actuators {
   FirstOrderActuator rudder;
   FirstOrderActuator stern_plane;

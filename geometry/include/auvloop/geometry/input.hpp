@@ -69,6 +69,10 @@ struct Range {
 
 class Document;
 
+// The whole content of a text file; throws InputError naming the file when it is missing, a
+// directory or unreadable.
+std::string read_file(const std::filesystem::path& path);
+
 // A view of one TOML table inside a Document. Cheap to copy; the Document must outlive it.
 class Table {
  public:

@@ -1,0 +1,85 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// A case: vehicle, plant, manoeuvre, controller, actuators, sensors and time stepping, read from a
+// TOML case file (docs/case-file.md) with every field validated, and run through the closed loop.
+#pragma once
+
+#include <complex>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <variant>
+
+#include <nlohmann/json.hpp>
+
+#include "auvloop/engine/closed_loop.hpp"
+#include "auvloop/engine/prestero.hpp"
+#include "auvloop/engine/vehicle_model.hpp"
+
+namespace auvloop::engine {
+
+enum class PlantKind { derivative, linearized };
+
+struct HeadingStepSpec {
+  double target_heading = 0;  // rad
+  PidGains gains;
+  PidOptions options;
+};
+struct RudderRampSpec {
+  RudderRamp::Surface surface = RudderRamp::Surface::rudder;
+  double angle = 0;        // rad, final command (sign as Prestero's)
+  double rate = 0;         // rad/s
+  double start = 0;        // s
+  double report_time = 5;  // s after the start at which the heading/pitch change is reported
+};
+struct TurningCircleSpec {
+  double rudder = 0;  // rad (Prestero's sign: > 0 turns to port)
+  double rate = 0;    // rad/s of the command ramp
+};
+struct ZigZagSpec {
+  double rudder = 0;          // rad
+  double switch_heading = 0;  // rad: reverse the rudder when the heading change passes this
+};
+using ManoeuvreSpec = std::variant<HeadingStepSpec, RudderRampSpec, TurningCircleSpec, ZigZagSpec>;
+
+struct IndexSpec {
+  double rise_low = 0.10, rise_high = 0.90;  // fractions of the step
+  double settling_band = 0.02;               // fraction of the step
+};
+
+struct CaseSpec {
+  std::string name;
+  std::string description;
+  std::string vehicle_spec;  // as written: preset:NAME or a path (relative to the case file)
+  VehicleModel vehicle;
+  PlantKind plant = PlantKind::derivative;
+  Buoyancy buoyancy = Buoyancy::neutral;
+  double dt = 0.01;            // s
+  double duration = 30;        // s
+  double initial_speed = 0;    // m/s
+  double initial_heading = 0;  // rad
+  double rpm = 1500;           // propeller command, rev/min
+  ManoeuvreSpec manoeuvre;
+  ActuatorLimits rudder, stern_plane, propeller;
+  bool ideal_sensors = false;
+  IndexSpec indices;
+
+  [[nodiscard]] std::string manoeuvre_type() const;  // "heading-step", ...
+};
+
+// Throws input::InputError listing every problem with file:line.
+CaseSpec load_case(const std::filesystem::path& path);
+CaseSpec parse_case(std::string_view text, const std::string& source_name,
+                    const std::filesystem::path& base_dir);
+
+// Every input that determines the result, defaults filled in and the vehicle (coefficients
+// included) resolved, so equal JSON means equal results. Angles in degrees as in the file.
+nlohmann::json canonical_json(const CaseSpec& c);
+
+struct CaseRun {
+  LoopResult loop;
+  std::string plant_name;
+  std::vector<std::complex<double>> eigenvalues;  // linearized plant only
+};
+CaseRun run_case(const CaseSpec& c, const std::function<void(double t)>& progress = {});
+
+}  // namespace auvloop::engine

@@ -1,0 +1,308 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "auvloop/engine/case.hpp"
+
+#include <cmath>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "auvloop/engine/derivative_plant.hpp"
+
+namespace auvloop::engine {
+namespace {
+using input::Range;
+using input::Table;
+constexpr double kDeg = std::numbers::pi / 180;
+
+PidGains read_gains(Table& t) {
+  return {t.number("kp", Range::non_negative(), "rad/rad"),
+          t.number("ki", Range::non_negative(), "1/s"), t.number("kd", Range::non_negative(), "s")};
+}
+
+ManoeuvreSpec read_manoeuvre(Table root, Table m, const ActuatorLimits& rudder) {
+  const std::string type =
+      m.choice("type", {"heading-step", "rudder-ramp", "turning-circle", "zigzag"});
+  if (type == "heading-step") {
+    HeadingStepSpec h;
+    h.target_heading = m.angle("target_heading", Range::closed(-180, 180));
+    auto c = root.table("controller");
+    h.gains = read_gains(c);
+    h.options.anti_windup = c.boolean_or("anti_windup", false);
+    h.options.derivative_filter = c.number_or("derivative_filter", 0.0, Range::non_negative(), "s");
+    h.options.output_limit = rudder.max;
+    c.finish();
+    m.finish();
+    return h;
+  }
+  if (root.has("controller")) {
+    root.fail("controller",
+              fmt::format("a \"{}\" manoeuvre is open loop: remove [controller]", type));
+    root.ignore("controller");
+  }
+  if (type == "rudder-ramp") {
+    RudderRampSpec r;
+    r.surface = m.choice_or("surface", "rudder", {"rudder", "stern-plane"}) == "rudder"
+                    ? RudderRamp::Surface::rudder
+                    : RudderRamp::Surface::stern_plane;
+    r.angle = m.angle("angle", Range::closed(-90, 90));
+    r.rate = m.angle("rate", Range{0, 1000, true, false});
+    r.start = m.number_or("start", 0.0, Range::non_negative(), "s");
+    r.report_time = m.number_or("report_time", 5.0, Range::positive(), "s");
+    m.finish();
+    return r;
+  }
+  if (type == "turning-circle") {
+    TurningCircleSpec tc;
+    tc.rudder = m.angle_or("rudder", rudder.max / kDeg, Range::closed(-90, 90));
+    tc.rate = m.angle_or("rate", rudder.max_rate / kDeg, Range{0, 1000, true, false});
+    m.finish();
+    return tc;
+  }
+  ZigZagSpec z;
+  z.rudder = m.angle("rudder", Range{0, 90, true, false});
+  z.switch_heading = m.angle("switch_heading", Range{0, 90, true, false});
+  m.finish();
+  return z;
+}
+
+ActuatorLimits read_angle_actuator(std::optional<Table> t, double tau, double limit_deg,
+                                   double rate_deg) {
+  ActuatorLimits a;
+  if (t) {
+    tau = t->number_or("time_constant", tau, Range::non_negative(), "s");
+    limit_deg = t->number_or("limit", limit_deg, Range{0, 90, true, false}, "deg");
+    rate_deg = t->number_or("rate_limit", rate_deg, Range{0, 1e4, true, false}, "deg/s");
+    t->finish();
+  }
+  a.time_constant = tau;
+  a.max = limit_deg * kDeg;
+  a.min = -a.max;
+  a.max_rate = rate_deg * kDeg;
+  return a;
+}
+
+void read_actuators(Table root, CaseSpec& c) {
+  auto act = root.optional_table("actuators");
+  // Defaults where the paper is silent (docs/case-file.md): a fast servo (0.1 s) limited to
+  // 30 deg, the paper's large-angle range, at 30 deg/s; a propeller lag of 0.5 s.
+  c.rudder = read_angle_actuator(act ? act->optional_table("rudder") : std::nullopt, 0.1, 30, 30);
+  c.stern_plane =
+      read_angle_actuator(act ? act->optional_table("stern_plane") : std::nullopt, 0.1, 30, 30);
+  c.propeller.time_constant = 0.5;
+  c.propeller.min = 0;
+  c.propeller.max = 3000;
+  if (act) {
+    if (auto p = act->optional_table("propeller")) {
+      c.propeller.time_constant = p->number_or("time_constant", 0.5, Range::non_negative(), "s");
+      c.propeller.max = p->number_or("max_rpm", 3000, Range::positive(), "rev/min");
+      p->finish();
+    }
+    act->finish();
+  }
+}
+
+void read_body(Table root, CaseSpec& c, const std::filesystem::path& base_dir) {
+  c.name = root.text("name");
+  c.description = root.text_or("description", "");
+  c.vehicle_spec = root.text_or("vehicle", "preset:remus100");
+  c.plant = root.choice_or("plant", "derivative", {"derivative", "linearized"}) == "derivative"
+                ? PlantKind::derivative
+                : PlantKind::linearized;
+  c.buoyancy = root.choice_or("buoyancy", "neutral", {"neutral", "vehicle"}) == "neutral"
+                   ? Buoyancy::neutral
+                   : Buoyancy::vehicle;
+  try {
+    const bool preset = c.vehicle_spec.starts_with("preset:");
+    const std::string spec = preset || std::filesystem::path(c.vehicle_spec).is_absolute()
+                                 ? c.vehicle_spec
+                                 : (base_dir / c.vehicle_spec).string();
+    c.vehicle = load_vehicle_model(spec);
+  } catch (const input::InputError& e) {
+    root.fail("vehicle", fmt::format("the vehicle cannot be used:\n{}", e.what()));
+  } catch (const std::invalid_argument& e) {
+    root.fail("vehicle", e.what());
+  }
+  auto time = root.table("time");
+  c.dt = time.number("dt", Range{0, 1, true, false}, "s");
+  c.duration = time.number("duration", Range{0, 86400, true, false}, "s");
+  time.finish();
+  if (c.duration < c.dt) time.fail("duration", "must be at least one time step (dt)");
+}
+
+void read_initial(Table root, CaseSpec& c) {
+  auto init = root.optional_table("initial");
+  c.rpm = init ? init->number_or("rpm", 1500, Range::non_negative(), "rev/min") : 1500;
+  const bool have_model = c.vehicle.hydrodynamics.reference_rpm > 0;
+  const double trim = have_model
+                          ? PresteroModel(c.vehicle.vehicle, c.vehicle.hydrodynamics, c.buoyancy)
+                                .equilibrium_speed(c.rpm)
+                          : 0.0;
+  c.initial_speed = init ? init->number_or("speed", trim, Range::closed(0, 20), "m/s") : trim;
+  c.initial_heading = init ? init->angle_or("heading", 0, Range::closed(-180, 180)) : 0;
+  if (init) init->finish();
+}
+
+}  // namespace
+
+std::string CaseSpec::manoeuvre_type() const {
+  static constexpr const char* names[] = {"heading-step", "rudder-ramp", "turning-circle",
+                                          "zigzag"};
+  return names[manoeuvre.index()];
+}
+
+CaseSpec parse_case(std::string_view text, const std::string& source_name,
+                    const std::filesystem::path& base_dir) {
+  auto doc = input::Document::parse(text, source_name);
+  auto root = doc.root();
+  CaseSpec c;
+  read_body(root, c, base_dir);
+  read_initial(root, c);
+  read_actuators(root, c);
+  c.manoeuvre = read_manoeuvre(root, root.table("manoeuvre"), c.rudder);
+  auto sensors = root.optional_table("sensors");
+  c.ideal_sensors =
+      sensors && sensors->choice_or("type", "virtual-ins", {"virtual-ins", "ideal"}) == "ideal";
+  if (sensors) sensors->finish();
+  if (auto idx = root.optional_table("indices")) {
+    const auto rise = idx->optional_numbers("rise", 2, 2, Range{0, 100, true, true}, "%");
+    if (rise) {
+      c.indices.rise_low = (*rise)[0] / 100;
+      c.indices.rise_high = (*rise)[1] / 100;
+      if (c.indices.rise_low >= c.indices.rise_high)
+        idx->fail("rise", "the first level must be below the second");
+    }
+    c.indices.settling_band =
+        idx->number_or("settling_band", 2, Range{0, 50, true, false}, "%") / 100;
+    idx->finish();
+  }
+  root.finish();
+  doc.check();
+  return c;
+}
+
+CaseSpec load_case(const std::filesystem::path& path) {
+  return parse_case(input::read_file(path), path.string(), path.parent_path());
+}
+
+nlohmann::json canonical_json(const CaseSpec& c) {
+  using nlohmann::json;
+  const auto deg = [](double rad) { return rad / kDeg; };
+  const auto actuator = [&](const ActuatorLimits& a, bool angle) {
+    return json{{"time_constant_s", a.time_constant},
+                {"min", angle ? deg(a.min) : a.min},
+                {"max", angle ? deg(a.max) : a.max},
+                {"max_rate", angle ? deg(a.max_rate) : a.max_rate}};
+  };
+  json coefficients;
+  for (const auto& f : PresteroCoefficients::fields()) {
+    coefficients[std::string(f.name)] = c.vehicle.hydrodynamics.*f.member;
+  }
+  const auto& h = c.vehicle.hydrodynamics;
+  const auto& mass = c.vehicle.vehicle.mass;
+  json j{
+      {"name", c.name},
+      {"plant", c.plant == PlantKind::derivative ? "derivative" : "linearized"},
+      {"buoyancy", c.buoyancy == Buoyancy::neutral ? "neutral" : "vehicle"},
+      {"dt_s", c.dt},
+      {"duration_s", c.duration},
+      {"initial",
+       {{"speed_m_s", c.initial_speed}, {"heading_deg", deg(c.initial_heading)}, {"rpm", c.rpm}}},
+      {"actuators",
+       {{"rudder_deg", actuator(c.rudder, true)},
+        {"stern_plane_deg", actuator(c.stern_plane, true)},
+        {"propeller_rpm", actuator(c.propeller, false)}}},
+      {"sensors", c.ideal_sensors ? "ideal" : "virtual-ins"},
+      {"indices",
+       {{"rise_low", c.indices.rise_low},
+        {"rise_high", c.indices.rise_high},
+        {"settling_band", c.indices.settling_band}}},
+      {"vehicle",
+       {{"spec", c.vehicle_spec},
+        {"mass_kg", mass.mass},
+        {"buoyancy_N", mass.buoyancy},
+        {"gravity", mass.gravity},
+        {"cg_m", {mass.cg_from_cb.x(), mass.cg_from_cb.y(), mass.cg_from_cb.z()}},
+        {"inertia_diag", {mass.inertia(0, 0), mass.inertia(1, 1), mass.inertia(2, 2)}},
+        {"hydrodynamics",
+         {{"coefficients", coefficients},
+          {"fin_pair_factor", h.fin_pair_factor},
+          {"X_prop", h.X_prop},
+          {"K_prop", h.K_prop},
+          {"reference_rpm", h.reference_rpm}}}}}};
+  std::visit(
+      [&](const auto& m) {
+        using T = std::decay_t<decltype(m)>;
+        json& out = j["manoeuvre"];
+        out["type"] = c.manoeuvre_type();
+        if constexpr (std::is_same_v<T, HeadingStepSpec>) {
+          out["target_heading_deg"] = deg(m.target_heading);
+          out["controller"] = {{"kp", m.gains.kp},
+                               {"ki", m.gains.ki},
+                               {"kd", m.gains.kd},
+                               {"anti_windup", m.options.anti_windup},
+                               {"derivative_filter_s", m.options.derivative_filter}};
+        } else if constexpr (std::is_same_v<T, RudderRampSpec>) {
+          out["surface"] = m.surface == RudderRamp::Surface::rudder ? "rudder" : "stern-plane";
+          out["angle_deg"] = deg(m.angle);
+          out["rate_deg_s"] = deg(m.rate);
+          out["start_s"] = m.start;
+          out["report_time_s"] = m.report_time;
+        } else if constexpr (std::is_same_v<T, TurningCircleSpec>) {
+          out["rudder_deg"] = deg(m.rudder);
+          out["rate_deg_s"] = deg(m.rate);
+        } else {
+          out["rudder_deg"] = deg(m.rudder);
+          out["switch_heading_deg"] = deg(m.switch_heading);
+        }
+      },
+      c.manoeuvre);
+  return j;
+}
+
+namespace {
+std::unique_ptr<Manoeuvre> make_manoeuvre(const CaseSpec& c) {
+  return std::visit(
+      [&](const auto& m) -> std::unique_ptr<Manoeuvre> {
+        using T = std::decay_t<decltype(m)>;
+        if constexpr (std::is_same_v<T, HeadingStepSpec>) {
+          return std::make_unique<HeadingStep>(m.target_heading, m.gains, m.options, c.rpm);
+        } else if constexpr (std::is_same_v<T, RudderRampSpec>) {
+          return std::make_unique<RudderRamp>(m.surface, m.angle, m.rate, m.start, c.rpm);
+        } else if constexpr (std::is_same_v<T, TurningCircleSpec>) {
+          return std::make_unique<RudderRamp>(RudderRamp::Surface::rudder, m.rudder, m.rate, 0.0,
+                                              c.rpm);
+        } else {
+          return std::make_unique<ZigZag>(m.rudder, m.switch_heading, c.initial_heading, c.rpm);
+        }
+      },
+      c.manoeuvre);
+}
+}  // namespace
+
+CaseRun run_case(const CaseSpec& c, const std::function<void(double t)>& progress) {
+  const PresteroModel model(c.vehicle.vehicle, c.vehicle.hydrodynamics, c.buoyancy);
+  std::unique_ptr<Plant> plant;
+  CaseRun run;
+  if (c.plant == PlantKind::derivative) {
+    plant = std::make_unique<DerivativePlant>(model);
+  } else {
+    auto lin = linearize_straight_running(model, c.rpm);
+    run.eigenvalues = lin.eigenvalues();
+    plant = std::make_unique<LinearizedPlant>(std::move(lin));
+  }
+  run.plant_name = plant->name();
+  IdealSensors ideal;
+  VirtualIns ins;
+  Sensors& sensors = c.ideal_sensors ? static_cast<Sensors&>(ideal) : static_cast<Sensors&>(ins);
+  auto manoeuvre = make_manoeuvre(c);
+  Actuators actuators{FirstOrderActuator(c.rudder, 0.0), FirstOrderActuator(c.stern_plane, 0.0),
+                      FirstOrderActuator(c.propeller, c.rpm)};
+  BodyState initial;
+  initial.nu[0] = c.initial_speed;
+  initial.attitude = quaternion_from_euler({0, 0, c.initial_heading});
+  run.loop = run_closed_loop(*plant, sensors, *manoeuvre, actuators, initial,
+                             {.dt = c.dt, .duration = c.duration, .progress = progress});
+  return run;
+}
+
+}  // namespace auvloop::engine

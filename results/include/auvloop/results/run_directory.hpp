@@ -1,0 +1,58 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The on-disk result of one run (docs/results.md):
+//   manifest.json    inputs (canonical case), content hash, versions, wall time, status, checksums
+//   timeseries.csv   every recorded signal, one header line "name [unit]"
+//   metrics.json     the manoeuvre's indices
+//   *.png, *.svg     heading, rudder, trajectory, speed and drift angle (gnuplot)
+// The directory is assembled under a scratch name beside the target and renamed into place, so
+// a reader sees either the previous result or the complete new one.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "auvloop/engine/time_series.hpp"
+
+namespace auvloop::results {
+
+inline constexpr const char* kEngineVersion = "auvloop-engine 0.1.0";
+
+struct RunReport {
+  std::string name;
+  nlohmann::json canonical_case;
+  engine::TimeSeries series;
+  nlohmann::json metrics;
+  std::string plant;
+  double wall_time_s = 0;
+  std::optional<std::string> failure;  // the run diverged: series ends at the last good step
+};
+
+// SHA-256 (hex) of the canonical case JSON and the engine version: equal inputs, equal key.
+std::string content_hash(const nlohmann::json& canonical_case);
+std::string sha256_hex(std::string_view data);
+
+struct WriteOutcome {
+  std::vector<std::string> files;
+  std::optional<std::string> plot_warning;  // plots skipped (gnuplot missing or failed)
+};
+
+WriteOutcome write_run_directory(const std::filesystem::path& dir, const RunReport& report);
+
+// Reads a run directory back (for compare): the manifest, metrics and time series.
+struct StoredRun {
+  std::filesystem::path dir;
+  nlohmann::json manifest;
+  nlohmann::json metrics;
+  engine::TimeSeries series;
+};
+StoredRun read_run_directory(const std::filesystem::path& dir);
+
+// Overlays several runs in the standard plots, written to `dir` (atomically, like a run).
+WriteOutcome write_comparison(const std::filesystem::path& dir, const std::vector<StoredRun>& runs,
+                              const std::vector<std::string>& labels);
+
+}  // namespace auvloop::results

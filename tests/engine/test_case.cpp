@@ -1,0 +1,97 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Case files: the shipped examples parse and run; bad files fail with file:line and the reason.
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "auvloop/engine/case.hpp"
+#include "temp_dir.hpp"
+
+using namespace auvloop::engine;
+using auvloop::input::InputError;
+using ::testing::HasSubstr;
+
+namespace {
+std::string example(const std::string& name) {
+  std::ifstream in(std::string(AUVLOOP_SOURCE_DIR) + "/examples/" + name);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+std::string error_of(std::string text, const std::string& from, const std::string& to) {
+  if (!from.empty()) {
+    const auto pos = text.find(from);
+    EXPECT_NE(pos, std::string::npos) << from;
+    text.replace(pos, from.size(), to);
+  }
+  try {
+    parse_case(text, "case.toml", AUVLOOP_SOURCE_DIR);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+}  // namespace
+
+TEST(Case, EveryExampleParsesAndRuns) {
+  for (const char* name : {"heading-step.toml", "prestero-yaw.toml", "prestero-pitch.toml",
+                           "turning-circle.toml", "zigzag-10-10.toml", "zigzag-20-20.toml"}) {
+    const CaseSpec c = parse_case(example(name), name, AUVLOOP_SOURCE_DIR);
+    CaseSpec shorter = c;
+    shorter.duration = 2.0;
+    const CaseRun run = run_case(shorter);
+    EXPECT_FALSE(run.loop.failure) << name;
+    EXPECT_EQ(run.loop.series.rows(), static_cast<std::size_t>(std::lround(2.0 / c.dt)) + 1)
+        << name;
+  }
+}
+
+TEST(Case, HeadingStepCarriesThePapersSetup) {
+  const CaseSpec c = parse_case(example("heading-step.toml"), "h", AUVLOOP_SOURCE_DIR);
+  const auto& h = std::get<HeadingStepSpec>(c.manoeuvre);
+  EXPECT_DOUBLE_EQ(h.gains.kp, 1.5);
+  EXPECT_DOUBLE_EQ(h.gains.ki, 0.6);
+  EXPECT_DOUBLE_EQ(h.gains.kd, 1.0);
+  EXPECT_NEAR(h.target_heading, std::numbers::pi / 2, 1e-15);
+  EXPECT_NEAR(c.initial_speed, std::sqrt(3.86 / 1.62), 1e-12);  // trim speed at 1500 rpm
+}
+
+TEST(Case, CanonicalJsonIsStableAndSensitive) {
+  const std::string text = example("heading-step.toml");
+  const auto a = canonical_json(parse_case(text, "a", AUVLOOP_SOURCE_DIR));
+  // Comments and key order do not matter; values do.
+  const auto b = canonical_json(parse_case("# comment\n" + text, "b", AUVLOOP_SOURCE_DIR));
+  EXPECT_EQ(a.dump(), b.dump());
+  std::string changed = text;
+  changed.replace(changed.find("kp = 1.5"), 8, "kp = 1.6");
+  EXPECT_NE(a.dump(), canonical_json(parse_case(changed, "c", AUVLOOP_SOURCE_DIR)).dump());
+}
+
+TEST(Case, BadFilesNameLineAndReason) {
+  const std::string text = example("heading-step.toml");
+  const auto line =
+      1 + std::count(text.begin(), text.begin() + static_cast<long>(text.find("dt = 0.01")), '\n');
+  EXPECT_THAT(
+      error_of(text, "dt = 0.01 ", "dt = -0.01 "),
+      HasSubstr(fmt::format(
+          "case.toml:{}:1: time.dt: value -0.01 is out of range: must be in (0, 1] s", line)));
+  EXPECT_THAT(
+      error_of(example("heading-step.toml"), "target_heading = 90", "target_heading = 270"),
+      HasSubstr("manoeuvre.target_heading: value 270 is out of range: must be in [-180, 180] deg"));
+  EXPECT_THAT(error_of(example("heading-step.toml"), "plant = \"derivative\"", "plant = \"cfd2\""),
+              HasSubstr("plant: \"cfd2\" is not allowed"));
+  EXPECT_THAT(error_of(example("heading-step.toml"), "kp = 1.5", "kpp = 1.5"),
+              HasSubstr("controller.kp: missing required key"));
+  EXPECT_THAT(error_of(example("heading-step.toml"), "[time]\ndt = 0.01", "[time]"),
+              HasSubstr("time.dt: missing required key"));
+  EXPECT_THAT(error_of(example("heading-step.toml"), "vehicle = \"preset:remus100\"",
+                       "vehicle = \"nope.toml\""),
+              HasSubstr("vehicle: the vehicle cannot be used"));
+  EXPECT_THAT(
+      error_of(example("prestero-yaw.toml"), "[manoeuvre]", "[controller]\nkp = 1\n[manoeuvre]"),
+      HasSubstr("open loop: remove [controller]"));
+}
