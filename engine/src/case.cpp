@@ -108,6 +108,8 @@ void read_body(Table root, CaseSpec& c, const std::filesystem::path& base_dir) {
   c.plant = root.choice_or("plant", "derivative", {"derivative", "linearized"}) == "derivative"
                 ? PlantKind::derivative
                 : PlantKind::linearized;
+  c.horizontal_linearization =
+      root.choice_or("linearization", "horizontal", {"horizontal", "full"}) == "horizontal";
   c.buoyancy = root.choice_or("buoyancy", "neutral", {"neutral", "vehicle"}) == "neutral"
                    ? Buoyancy::neutral
                    : Buoyancy::vehicle;
@@ -286,7 +288,7 @@ CaseRun run_case(const CaseSpec& c, const std::function<void(double t)>& progres
   if (c.plant == PlantKind::derivative) {
     plant = std::make_unique<DerivativePlant>(model);
   } else {
-    auto lin = linearize_straight_running(model, c.rpm);
+    auto lin = linearize_straight_running(model, c.rpm, c.horizontal_linearization);
     run.eigenvalues = lin.eigenvalues();
     plant = std::make_unique<LinearizedPlant>(std::move(lin));
   }

@@ -52,8 +52,9 @@ PlantResult DerivativePlant::advance(const ActuatorValues& a, double dt) {
   });
 }
 
-Linearization linearize_straight_running(const PresteroModel& model, double rpm) {
+Linearization linearize_straight_running(const PresteroModel& model, double rpm, bool horizontal) {
   Linearization lin;
+  lin.horizontal = horizontal;
   lin.x0.setZero();
   lin.x0[0] = model.equilibrium_speed(rpm);
   lin.c0 = Eigen::Vector3d(0, 0, rpm);
@@ -77,10 +78,30 @@ Linearization linearize_straight_running(const PresteroModel& model, double rpm)
     cm[j] -= h;
     lin.B.col(j) = (f(lin.x0, cp) - f(lin.x0, cm)) / (2 * h);
   }
+  if (horizontal) {
+    // Keep surge, sway and yaw; heave, roll, pitch rows and the couplings into them vanish.
+    for (int i : {2, 3, 4}) {
+      lin.A.row(i).setZero();
+      lin.B.row(i).setZero();
+      lin.f0[i] = 0;
+    }
+    for (int j : {2, 3, 4, 6, 7}) lin.A.col(j).setZero();
+  }
   return lin;
 }
 
 std::vector<std::complex<double>> Linearization::eigenvalues() const {
+  if (horizontal) {
+    Eigen::Matrix3d planar;
+    const int k[] = {0, 1, 5};
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) planar(i, j) = A(k[i], k[j]);
+    }
+    const Eigen::EigenSolver<Eigen::Matrix3d> solver(planar);
+    std::vector<std::complex<double>> out(solver.eigenvalues().begin(), solver.eigenvalues().end());
+    std::sort(out.begin(), out.end(), [](auto a, auto b) { return a.real() > b.real(); });
+    return out;
+  }
   Eigen::Matrix<double, 8, 8> system = Eigen::Matrix<double, 8, 8>::Zero();
   system.topRows<6>() = A;
   system(6, 3) = 1;  // phi' = p at zero roll and pitch

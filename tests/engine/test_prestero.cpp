@@ -179,3 +179,20 @@ TEST(Sensors, VirtualInsTracksTheTrueStateThroughATurn) {
   EXPECT_LT(worst, 0.01);  // deg
   EXPECT_GT(std::abs(truth.back() - truth.front()), 90.0);
 }
+
+TEST(Prestero, HorizontalLinearizationKeepsTheSwayYawRoot) {
+  const PresteroModel model(remus().vehicle, remus().hydrodynamics);
+  const auto lin = linearize_straight_running(model, 1500, /*horizontal=*/true);
+  const auto eig = lin.eigenvalues();
+  ASSERT_EQ(eig.size(), 3U);
+  EXPECT_GT(eig.front().real(), 0.5);  // unstable without quadratic cross-flow, as published
+  LinearizedPlant plant(lin);
+  BodyState s;
+  s.nu[0] = model.equilibrium_speed(1500);
+  plant.reset(s);
+  for (int k = 0; k < 100; ++k)
+    ASSERT_TRUE(std::holds_alternative<PlantStep>(plant.advance({0.01, 0.02, 1500}, 0.01)));
+  EXPECT_EQ(plant.state().w(), 0.0);  // the vertical plane and roll stay at trim
+  EXPECT_EQ(plant.state().p(), 0.0);
+  EXPECT_EQ(plant.state().q(), 0.0);
+}

@@ -52,6 +52,7 @@ struct CaseSpec {
   std::string vehicle_spec;  // as written: preset:NAME or a path (relative to the case file)
   VehicleModel vehicle;
   PlantKind plant = PlantKind::derivative;
+  bool horizontal_linearization = true;  // linearized plant: horizontal plane only
   Buoyancy buoyancy = Buoyancy::neutral;
   double dt = 0.01;            // s
   double duration = 30;        // s

@@ -36,17 +36,23 @@ class DerivativePlant final : public Plant {
 // the Jacobians of Prestero's model at straight running with rudders at zero. f0 keeps the trim
 // residual (REMUS is 7 N buoyant), so the linear and nonlinear models agree at the trim point.
 // Kinematics stay exact: heading and position are meaningful through any turn.
+// `horizontal` keeps only the horizontal-plane part (u, v, r): heave, roll and pitch stay at
+// trim. That is the usual linear model for yaw manoeuvres; the full one carries the unstable
+// heave-pitch pair of a body with no depth control.
 struct Linearization {
+  bool horizontal = false;
   Eigen::Matrix<double, 8, 1> x0;
   Eigen::Vector3d c0;
   Vector6d f0;
   Eigen::Matrix<double, 6, 8> A;
   Eigen::Matrix<double, 6, 3> B;
-  // Eigenvalues of the 8-state system (nu, phi, theta) with phi' = p, theta' = q (1/s).
+  // Eigenvalues (1/s) of the 8-state system (nu, phi, theta) with phi' = p, theta' = q, or of the
+  // 3-state (u, v, r) system when horizontal.
   [[nodiscard]] std::vector<std::complex<double>> eigenvalues() const;
 };
 
-Linearization linearize_straight_running(const PresteroModel& model, double rpm);
+Linearization linearize_straight_running(const PresteroModel& model, double rpm,
+                                         bool horizontal = false);
 
 class LinearizedPlant final : public Plant {
  public:
