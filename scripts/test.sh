@@ -20,7 +20,7 @@ jobs=$(nproc)
 scripts/install-deps.sh
 scripts/check-format.sh
 
-scripts/build.sh build/release -DCMAKE_BUILD_TYPE=Release -DAUVLOOP_WERROR=ON -DAUVLOOP_BUILD_TESTS=ON
+scripts/build.sh build/release -DCMAKE_BUILD_TYPE=Release -DAUVLOOP_WERROR=ON -DAUVLOOP_BUILD_TESTS=ON -DAUVLOOP_BUILD_BENCH=ON
 labels="unit|validation"
 [ $full -eq 1 ] && labels="unit|validation|slow"
 ctest --test-dir build/release --output-on-failure -j "$jobs" -L "$labels"

@@ -116,7 +116,13 @@ int compare_command(const RunOptions& o) {
   const auto written = results::write_comparison(o.out, runs, labels);
   // Indices side by side: one row per index, one column per run.
   std::vector<std::vector<std::pair<std::string, std::string>>> cols(runs.size());
-  for (std::size_t i = 0; i < runs.size(); ++i) flatten(runs[i].metrics, "", cols[i]);
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    // Status first: indices of a diverged run cover only the time before it diverged.
+    const auto& t = runs[i].series["t"].values;
+    cols[i].emplace_back("status", runs[i].manifest.value("status", "?"));
+    cols[i].emplace_back("simulated_s", fmt::format("{:.6g}", t.empty() ? 0.0 : t.back()));
+    flatten(runs[i].metrics, "", cols[i]);
+  }
   fmt::print("{:<36}", "index");
   for (const auto& l : labels) fmt::print(" {:>24}", l.substr(0, 24));
   fmt::print("\n");

@@ -182,7 +182,7 @@ std::optional<std::string> run_gnuplot(const fs::path& dir, const std::string& s
   const fs::path file = dir / "plots.gp";
   write_text(file, "cd " + gnuplot_quote(dir.string()) +
                        "\nset datafile separator ','\n"
-                       "set termoption noenhanced\nset grid\nset key outside right top\n" +
+                       "set termoption noenhanced\nset grid\nset key below\n" +
                        script);
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
