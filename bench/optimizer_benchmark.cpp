@@ -36,7 +36,8 @@ Outcome run(const TestFunction& f, const Variant& v, std::uint64_t seed) {
   for (Eigen::Index k = 0; k < f.lower.size(); ++k) c.names.push_back("x" + std::to_string(k + 1));
   c.lower = f.lower;
   c.upper = f.upper;
-  c.initial_points = v.initial_per_dim > 0 ? v.initial_per_dim * static_cast<int>(f.lower.size()) : 20;
+  c.initial_points =
+      v.initial_per_dim > 0 ? v.initial_per_dim * static_cast<int>(f.lower.size()) : 20;
   c.patience = v.patience;
   c.epsilon = v.epsilon;
   c.max_iterations = v.max_iterations;
@@ -65,7 +66,8 @@ int main(int argc, char** argv) {
                                       {"patience 3", 0, 3, 1e-3, 15},
                                       {"whole budget (eps 0, 15 iterations)", 0, 1, 0.0, 15},
                                       {"5 d initial points, eps 0", 5, 1, 0.0, 20}};
-  std::printf("%-12s %-38s %8s %16s %8s %10s\n", "function", "configuration", "reached", "evals to 1%", "(sd)", "evals used");
+  std::printf("%-12s %-38s %8s %16s %8s %10s\n", "function", "configuration", "reached",
+              "evals to 1%", "(sd)", "evals used");
   for (const char* name : {"branin", "hartmann3"}) {
     const TestFunction f = test_function(name);
     for (const auto& v : variants) {
@@ -76,13 +78,16 @@ int main(int argc, char** argv) {
         if (o.needed > 0) needed.push_back(o.needed);
         used += o.used;
       }
-      const double mean = needed.empty() ? 0 : std::accumulate(needed.begin(), needed.end(), 0.0) / static_cast<double>(needed.size());
+      const double mean = needed.empty() ? 0
+                                         : std::accumulate(needed.begin(), needed.end(), 0.0) /
+                                               static_cast<double>(needed.size());
       double sd = 0;
       for (double x : needed) sd += (x - mean) * (x - mean);
       sd = needed.size() > 1 ? std::sqrt(sd / static_cast<double>(needed.size() - 1)) : 0;
-      std::printf("%-12s %-38s %5zu/%-2d %16.1f %8.1f %10.1f\n", name, v.name.c_str(), needed.size(), seeds, mean, sd,
-                  used / seeds);
+      std::printf("%-12s %-38s %5zu/%-2d %16.1f %8.1f %10.1f\n", name, v.name.c_str(),
+                  needed.size(), seeds, mean, sd, used / seeds);
     }
   }
-  std::printf("published bar (best Kriging method, 30 runs): branin 21.2, hartmann3 22.7 evaluations\n");
+  std::printf(
+      "published bar (best Kriging method, 30 runs): branin 21.2, hartmann3 22.7 evaluations\n");
 }

@@ -31,6 +31,7 @@ int main(int argc, char** argv) {
   int exit_code = cli::kOk;
   cli::register_geometry_commands(app);
   cli::register_run_commands(app, exit_code);
+  cli::register_optimize_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -51,6 +52,9 @@ int main(int argc, char** argv) {
   } catch (const std::filesystem::filesystem_error& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return cli::kFailed;
+  } catch (const std::invalid_argument& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return cli::kBadInput;
   } catch (const std::runtime_error& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return cli::kFailed;

@@ -177,7 +177,14 @@ const std::vector<Figure>& standard_figures() {
   return figures;
 }
 
-// Runs gnuplot on `script` inside `dir`; returns an error text, or nothing on success.
+}  // namespace
+
+void write_file_atomically(const fs::path& path, const std::string& text) {
+  const fs::path tmp = path.parent_path() / ("." + path.filename().string() + ".tmp");
+  write_text(tmp, text);
+  fs::rename(tmp, path);
+}
+
 std::optional<std::string> run_gnuplot(const fs::path& dir, const std::string& script) {
   const fs::path file = dir / "plots.gp";
   write_text(file, "cd " + gnuplot_quote(dir.string()) +
@@ -202,6 +209,8 @@ std::optional<std::string> run_gnuplot(const fs::path& dir, const std::string& s
   fs::remove(log);
   return std::nullopt;
 }
+
+namespace {
 
 // Assembles a directory under a scratch name and swaps it in: the target never holds a mix.
 template <class Fill>

@@ -1,0 +1,90 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// `auvloop optimize`: the paper's setup lowers ITAE and writes its results; test functions run;
+// bad optimisation files fail with file:line and the reason.
+#include <array>
+#include <cstdio>
+#include <fstream>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "temp_dir.hpp"
+
+using ::testing::HasSubstr;
+
+namespace {
+struct Result {
+  int exit_code;
+  std::string output;
+};
+Result run(const std::string& args) {
+  FILE* pipe = popen((std::string(AUVLOOP_CLI) + " " + args + " 2>&1").c_str(), "r");
+  std::string out;
+  std::array<char, 4096> buffer{};
+  while (std::fgets(buffer.data(), buffer.size(), pipe) != nullptr) out += buffer.data();
+  return {WEXITSTATUS(pclose(pipe)), out};
+}
+const std::string kExamples = std::string(AUVLOOP_SOURCE_DIR) + "/examples/";
+const std::string kTemplate = R"(name = "t"
+[problem]
+type = "case"
+case = ")" + kExamples + R"(heading-step.toml"
+[[parameter]]
+name = "kp"
+lower = LOWER
+upper = UPPER
+[objective]
+index = "INDEX"
+[optimizer]
+initial_points = 6
+max_iterations = 1
+)";
+std::string study(const std::string& lower, const std::string& upper, const std::string& index) {
+  std::string s = kTemplate;
+  s.replace(s.find("LOWER"), 5, lower);
+  s.replace(s.find("UPPER"), 5, upper);
+  s.replace(s.find("INDEX"), 5, index);
+  return s;
+}
+}  // namespace
+
+TEST(OptimizeCli, PaperSetupLowersItaeAndWritesResults) {
+  auvloop::test::TempDir tmp;
+  const auto r =
+      run("optimize " + kExamples + "pid-optimization.toml --out " + tmp.path().string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("ITAE (deg s^2)"));
+  std::ifstream in(tmp.path() / "optimization.json");
+  const auto j = nlohmann::json::parse(in);
+  const double best = j["best"]["value"];
+  std::ifstream before(tmp.path() / "before" / "metrics.json");
+  EXPECT_LT(best, nlohmann::json::parse(before)["itae_deg_s2"].get<double>());
+  EXPECT_FALSE(j["stop_reason"].get<std::string>().empty());
+  EXPECT_EQ(j["study"]["evaluations"].size(), j["evaluations"].size());
+  EXPECT_TRUE(std::filesystem::exists(tmp.path() / "convergence.png"));
+  EXPECT_TRUE(std::filesystem::exists(tmp.path() / "before-after" / "heading.png"));
+}
+
+TEST(OptimizeCli, TestFunctionsRun) {
+  auvloop::test::TempDir tmp;
+  const auto r =
+      run("optimize " + kExamples + "branin-optimization.toml --out " + tmp.path().string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("best: f = 0.39"));
+}
+
+TEST(OptimizeCli, BadFilesNameLineAndReason) {
+  auvloop::test::TempDir tmp;
+  auto check = [&](const std::string& text, const std::string& expected) {
+    const auto path = tmp.write("opt.toml", text);
+    const auto r = run("optimize " + path.string() + " --out " + (tmp.path() / "o").string());
+    EXPECT_EQ(r.exit_code, 3) << r.output;
+    EXPECT_THAT(r.output, HasSubstr(expected));
+  };
+  check(
+      study("2", "1", "itae"),
+      "opt.toml:8:1: parameter[0].upper: must exceed lower = 2 (bounds reversed or of zero width)");
+  check(study("1", "1", "itae"), "bounds reversed or of zero width");
+  check(study("0", "1", "speed"), "opt.toml:10:1: objective.index: \"speed\" is not allowed");
+}
