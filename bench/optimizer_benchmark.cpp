@@ -3,7 +3,7 @@
 // on Branin and Hartmann-3, 30 seeds each (shared/reference/optimizer-benchmarks.md; the best
 // published Kriging methods need 21.2 and 22.7 on average). Configurations: the paper's (20 LHS
 // points, eps 1e-3, patience 1, at most 15 iterations), patience 3, the whole budget of 50
-// (eps 0), and a smaller initial design of 5 d points. Usage: optimizer_benchmark [seeds]
+// (eps 0), and smaller initial designs of 5 d and 3 d points. Usage: optimizer_benchmark [seeds]
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -65,7 +65,8 @@ int main(int argc, char** argv) {
   const std::vector<Variant> variants{{"paper (20 LHS, eps 1e-3, patience 1)", 0, 1, 1e-3, 15},
                                       {"patience 3", 0, 3, 1e-3, 15},
                                       {"whole budget (eps 0, 15 iterations)", 0, 1, 0.0, 15},
-                                      {"5 d initial points, eps 0", 5, 1, 0.0, 20}};
+                                      {"5 d initial points, eps 0", 5, 1, 0.0, 20},
+                                      {"3 d initial points, eps 0", 3, 1, 0.0, 22}};
   std::printf("%-12s %-38s %8s %16s %8s %10s\n", "function", "configuration", "reached",
               "evals to 1%", "(sd)", "evals used");
   for (const char* name : {"branin", "hartmann3"}) {
