@@ -10,26 +10,14 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "cli_runner.hpp"
 #include "temp_dir.hpp"
 
 using ::testing::HasSubstr;
 
 namespace {
-struct Result {
-  int exit_code;
-  std::string output;  // stdout and stderr together
-};
-
-Result run(const std::string& args) {
-  const std::string cmd = std::string(AUVLOOP_CLI) + " " + args + " 2>&1";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  std::string out;
-  std::array<char, 4096> buffer{};
-  while (std::fgets(buffer.data(), buffer.size(), pipe) != nullptr) out += buffer.data();
-  const int status = pclose(pipe);
-  return {WEXITSTATUS(status), out};
-}
-
+using auvloop::test::run_cli;
+const auto& run = run_cli;
 void expect_rel(const nlohmann::json& value, double reference) {
   EXPECT_NEAR(value.get<double>() / reference - 1, 0.0, 5e-3) << value << " vs " << reference;
 }

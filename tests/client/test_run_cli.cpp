@@ -9,22 +9,14 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "cli_runner.hpp"
 #include "temp_dir.hpp"
 
 using ::testing::HasSubstr;
 
 namespace {
-struct Result {
-  int exit_code;
-  std::string output;
-};
-Result run(const std::string& args) {
-  FILE* pipe = popen((std::string(AUVLOOP_CLI) + " " + args + " 2>&1").c_str(), "r");
-  std::string out;
-  std::array<char, 4096> buffer{};
-  while (std::fgets(buffer.data(), buffer.size(), pipe) != nullptr) out += buffer.data();
-  return {WEXITSTATUS(pclose(pipe)), out};
-}
+using auvloop::test::run_cli;
+const auto& run = run_cli;
 nlohmann::json read_json(const std::filesystem::path& p) {
   std::ifstream in(p);
   return nlohmann::json::parse(in);

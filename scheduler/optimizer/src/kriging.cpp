@@ -81,12 +81,7 @@ double Kriging::concentrated_likelihood(const Eigen::MatrixXd& X, const Eigen::V
 
 Kriging::Kriging(Eigen::MatrixXd X, Eigen::VectorXd y, KrigingOptions options)
     : X_(std::move(X)), options_(options) {
-  if (X_.rows() < 2 || X_.rows() != y.size())
-    throw std::invalid_argument("Kriging: need at least two samples");
-  y_mean_ = y.mean();
-  const double sd = std::sqrt((y.array() - y_mean_).square().sum() / static_cast<double>(y.size()));
-  y_scale_ = sd > 0 ? sd : 1.0;
-  y_ = (y.array() - y_mean_) / y_scale_;
+  standardise(y);
   fit_theta();
   factorise();
 }
@@ -94,13 +89,18 @@ Kriging::Kriging(Eigen::MatrixXd X, Eigen::VectorXd y, KrigingOptions options)
 Kriging::Kriging(Eigen::MatrixXd X, Eigen::VectorXd y, Eigen::VectorXd theta,
                  KrigingOptions options)
     : X_(std::move(X)), options_(options), theta_(std::move(theta)) {
-  if (X_.rows() < 2 || X_.rows() != y.size())
+  standardise(y);
+  factorise();
+}
+
+void Kriging::standardise(const Eigen::VectorXd& y) {
+  if (X_.rows() < 2 || X_.rows() != y.size()) {
     throw std::invalid_argument("Kriging: need at least two samples");
+  }
   y_mean_ = y.mean();
   const double sd = std::sqrt((y.array() - y_mean_).square().sum() / static_cast<double>(y.size()));
-  y_scale_ = sd > 0 ? sd : 1.0;
+  y_scale_ = sd > 0 ? sd : 1.0;  // a constant response keeps its scale
   y_ = (y.array() - y_mean_) / y_scale_;
-  factorise();
 }
 
 void Kriging::fit_theta() {

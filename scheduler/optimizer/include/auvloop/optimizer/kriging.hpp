@@ -52,6 +52,7 @@ class Kriging {
                                         Eigen::VectorXd* gradient);
 
  private:
+  void standardise(const Eigen::VectorXd& y);
   void factorise();
   void fit_theta();
 
