@@ -80,3 +80,28 @@ TEST(OptimizeCli, BadFilesNameLineAndReason) {
   check(study("1", "1", "itae"), "bounds reversed or of zero width");
   check(study("0", "1", "speed"), "opt.toml:10:1: objective.index: \"speed\" is not allowed");
 }
+
+TEST(OptimizeCli, WeightedObjectiveAndConstraints) {
+  auvloop::test::TempDir tmp;
+  std::string text = study("0", "3.5", "weighted");
+  text += "[objective.weights]\nitae = 1.0\novershoot = 20.0\n[constraints]\nmax_overshoot = 80\n";
+  const auto path = tmp.write("w.toml", text);
+  const auto r = run("optimize " + path.string() + " --out " + (tmp.path() / "o").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream in(tmp.path() / "o" / "optimization.json");
+  const auto j = nlohmann::json::parse(in);
+  EXPECT_GT(j["failures"].get<int>(), 0);  // the constraint was active ...
+  EXPECT_FALSE(j["best"].is_null());       // ... but not everywhere
+  // Every evaluation's objective is ITAE + 20 x overshoot, and any overshoot above 80 % failed.
+  for (const auto& e : j["study"]["evaluations"]) {
+    const auto& m = e["indices"];
+    if (e["objective"].is_null()) {
+      EXPECT_NE(e["failure"].get<std::string>().find("overshoot"), std::string::npos);
+      EXPECT_GT(m["overshoot_percent"].get<double>(), 80.0);
+    } else {
+      EXPECT_NEAR(e["objective"].get<double>(),
+                  m["itae_deg_s2"].get<double>() + 20 * m["overshoot_percent"].get<double>(), 1e-6);
+      EXPECT_LE(m["overshoot_percent"].get<double>(), 80.0);
+    }
+  }
+}
