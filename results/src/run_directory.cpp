@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "auvloop/results/run_directory.hpp"
 
+#include "auvloop/geometry/atomic_file.hpp"
+
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -180,9 +182,7 @@ const std::vector<Figure>& standard_figures() {
 }  // namespace
 
 void write_file_atomically(const fs::path& path, const std::string& text) {
-  const fs::path tmp = path.parent_path() / ("." + path.filename().string() + ".tmp");
-  write_text(tmp, text);
-  fs::rename(tmp, path);
+  auvloop::write_file_atomically(path, text);
 }
 
 std::optional<std::string> run_gnuplot(const fs::path& dir, const std::string& script) {
