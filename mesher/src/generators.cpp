@@ -29,6 +29,59 @@ std::vector<double> graded_nodes(double a, double b, int n, double ratio, bool t
   return x;
 }
 
+std::vector<double> grown_nodes(double a, double b, double first, double max_ratio) {
+  const double length = b - a;
+  if (!(length > 0) || !(first > 0) || !(max_ratio >= 1)) {
+    throw std::invalid_argument("grown_nodes: need b > a, first > 0, max_ratio >= 1");
+  }
+  if (first >= length) return {a, b};
+  // Fewest cells that reach `length` with growth max_ratio, then the ratio that fits exactly.
+  const int n = max_ratio == 1.0
+                    ? static_cast<int>(std::ceil(length / first))
+                    : static_cast<int>(std::ceil(std::log(1 + length * (max_ratio - 1) / first) /
+                                                 std::log(max_ratio)));
+  auto first_cell = [&](double r) {
+    return r == 1.0 ? length / n : length * (r - 1) / (std::pow(r, n) - 1);
+  };
+  double lo = 1.0, hi = std::max(max_ratio, 1.0 + 1e-12);
+  for (int i = 0; i < 200; ++i) {  // first_cell decreases with r
+    const double mid = 0.5 * (lo + hi);
+    (first_cell(mid) > first ? lo : hi) = mid;
+  }
+  return graded_nodes(a, b, n, 0.5 * (lo + hi));
+}
+
+namespace {
+// Coarse - fine - coarse: growth away from [lo, hi] on both sides.
+std::vector<double> clustered(double a, double lo, double hi, double b, double h, double growth) {
+  auto left = grown_nodes(-lo, -a, h, growth);  // mirrored so the fine cell sits at lo
+  std::vector<double> x;
+  for (auto it = left.rbegin(); it != left.rend(); ++it) x.push_back(-*it);
+  const int n = std::max(1, static_cast<int>(std::ceil((hi - lo) / h)));
+  for (int i = 1; i <= n; ++i) x.push_back(lo + (hi - lo) * i / n);
+  const auto right = grown_nodes(hi, b, h, growth);
+  x.insert(x.end(), right.begin() + 1, right.end());
+  return x;
+}
+}  // namespace
+
+Grid background_box(const BackgroundSpec& s) {
+  if (!(s.length > 0) || !(s.radius > 0) || !(s.spacing > 0)) {
+    throw std::invalid_argument("background_box: length, radius and spacing must be positive");
+  }
+  const double L = s.length, stern = s.nose_x - L;
+  const double r = s.radius + s.margin;
+  const auto x = clustered(stern - s.behind * L, stern - s.wake * L, s.nose_x + s.margin,
+                           s.nose_x + s.ahead * L, s.spacing, s.growth);
+  const auto y = clustered(-s.side * L, -r, r, s.side * L, s.spacing, s.growth);
+  BoxPatches p;
+  // Body frame: the vehicle moves forward (+x), so the flow enters at x+ and leaves at x-.
+  p.names = {"outlet", "inlet", "side_port", "side_starboard", "top", "bottom"};
+  p.types = {PatchType::outlet,   PatchType::inlet,    PatchType::symmetry,
+             PatchType::symmetry, PatchType::symmetry, PatchType::symmetry};
+  return cartesian_box(x, y, y, p, "background");
+}
+
 Grid cartesian_box(const std::vector<double>& x, const std::vector<double>& y,
                    const std::vector<double>& z, const BoxPatches& patches,
                    const std::string& name) {

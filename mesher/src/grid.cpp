@@ -151,6 +151,17 @@ GridQuality measure_quality(const Grid& g, const GridGeometry& geo) {
   return q;
 }
 
+std::string quality_table(const Grid& g, const GridQuality& q) {
+  return fmt::format(
+      "grid {}: {} cells, {} faces ({} internal), {} points\n"
+      "  volume {:.6g} m^3, smallest cell {:.3e} m^3 (cell {})\n"
+      "  max non-orthogonality {:.2f} deg, max skewness {:.3f}, max aspect ratio {:.2f}, max "
+      "closure error {:.1e}\n",
+      g.name, q.cells, q.faces, q.internal_faces, q.points, q.total_volume, q.min_volume,
+      q.worst_cell, q.max_non_orthogonality, q.max_skewness, q.max_aspect_ratio,
+      q.max_closure_error);
+}
+
 void validate(const Grid& g, const GridGeometry& geo, double closure_tolerance) {
   const auto fail = [&](const std::string& what) {
     throw std::runtime_error("grid \"" + g.name + "\": " + what);

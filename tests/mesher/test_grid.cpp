@@ -119,3 +119,48 @@ TEST(Grid, WritesOpenFoamPolyMeshAndVtu) {
   EXPECT_THAT(vtu, HasSubstr("Name=\"faceoffsets\""));
   EXPECT_THAT(vtu, HasSubstr("Name=\"volume\""));
 }
+
+TEST(Grid, GrownNodesStartAtTheRequestedSizeAndNeverGrowTooFast) {
+  const auto x = grown_nodes(0, 10, 0.02, 1.15);
+  EXPECT_NEAR(x[1] - x[0], 0.02, 1e-9);
+  EXPECT_DOUBLE_EQ(x.back(), 10.0);
+  for (std::size_t i = 2; i < x.size(); ++i)
+    EXPECT_LE((x[i] - x[i - 1]) / (x[i - 1] - x[i - 2]), 1.15 + 1e-9);
+}
+
+TEST(Grid, BackgroundBoxHasThePapersExtents) {
+  // REMUS 100: L = 1.3327 m, bow at body x = 0.611 m, fin tips 0.131 m from the axis.
+  BackgroundSpec s;
+  s.nose_x = 0.611;
+  s.length = 1.3327;
+  s.radius = 0.131;
+  s.spacing = 0.04;
+  const Grid g = background_box(s);
+  const GridGeometry geo = compute_geometry(g);
+  EXPECT_NO_THROW(validate(g, geo));
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e9), hi = -lo;
+  for (const auto& p : g.points) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  EXPECT_NEAR(hi.x(), 0.611 + 3 * 1.3327, 1e-12);           // inlet 3 L ahead of the bow
+  EXPECT_NEAR(lo.x(), 0.611 - 1.3327 - 5 * 1.3327, 1e-12);  // outlet 5 L behind the stern
+  EXPECT_NEAR(hi.y(), 1.4 * 1.3327, 1e-12);
+  EXPECT_NEAR(lo.z(), -1.4 * 1.3327, 1e-12);
+  // The cell holding the propeller disk (just behind the stern) is a near-body cell: the near
+  // region is divided into whole cells no larger than the spacing.
+  int near = -1;
+  for (int c = 0; c < g.cells; ++c) {
+    if ((geo.cell_centre[static_cast<std::size_t>(c)] - Eigen::Vector3d(0.611 - 1.3427, 0.02, 0.02))
+            .norm() < 0.04)
+      near = c;
+  }
+  ASSERT_GE(near, 0);
+  const double size = std::cbrt(geo.cell_volume[static_cast<std::size_t>(near)]);
+  EXPECT_LE(size, 0.04);
+  EXPECT_GT(size, 0.85 * 0.04);
+  const GridQuality q = measure_quality(g, geo);
+  EXPECT_LT(q.max_non_orthogonality, 1e-6);
+  EXPECT_THAT(quality_table(g, q), HasSubstr("grid background:"));
+  std::printf("%s", quality_table(g, q).c_str());
+}

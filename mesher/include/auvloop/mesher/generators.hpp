@@ -22,6 +22,28 @@ struct BoxPatches {
                                  PatchType::wall, PatchType::wall, PatchType::wall};
 };
 
+// Nodes from a to b whose first cell (at a) is `first` and whose cells grow geometrically by at
+// most `max_ratio`; the ratio is solved so that the first cell is exactly `first`.
+std::vector<double> grown_nodes(double a, double b, double first, double max_ratio);
+
+// The background box of the overset system (issue 6): the paper's extents by default (inlet 3 L
+// ahead of the bow, outlet 5 L behind the stern, 1.4 L from the axis to each side), uniform
+// spacing `spacing` in a near-body region that also covers the propeller disk and `wake` behind
+// the stern, and geometric growth (at most `growth`) from there to the outer boundary.
+struct BackgroundSpec {
+  double nose_x = 0;      // body x of the bow (m)
+  double length = 0;      // hull length L (m)
+  double radius = 0;      // largest distance of the body (fins included) from its axis (m)
+  double ahead = 3.0;     // in L
+  double behind = 5.0;    // in L
+  double side = 1.4;      // in L
+  double spacing = 0.02;  // m, near the body
+  double margin = 0.05;   // m, near region beyond the body
+  double wake = 0.5;      // in L: near-region extension behind the stern
+  double growth = 1.15;   // maximum ratio of neighbouring cell sizes
+};
+Grid background_box(const BackgroundSpec& spec);
+
 // Hexahedral grid on the tensor product of the node lists (cell (i, j, k) has index
 // i + nx (j + ny k)). Periodic sides pair up (x- with x+, ...).
 Grid cartesian_box(const std::vector<double>& x, const std::vector<double>& y,

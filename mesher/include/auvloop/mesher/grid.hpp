@@ -95,6 +95,9 @@ struct GridQuality {
 
 GridQuality measure_quality(const Grid& g, const GridGeometry& geo);
 
+// The mesh report: one grid's counts and quality as JSON-ready text rows.
+std::string quality_table(const Grid& g, const GridQuality& q);
+
 // Throws std::runtime_error naming the first violated invariant (face, cell and reason).
 void validate(const Grid& g, const GridGeometry& geo, double closure_tolerance = 1e-9);
 
