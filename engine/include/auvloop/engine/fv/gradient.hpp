@@ -1,0 +1,34 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Cell-centred gradients on a mesher::Grid.
+//
+// Weighted least squares: for cell P, minimise sum_k w_k (phi_k - phi_P - g . d_k)^2 over the
+// face neighbours k (d_k = x_k - x_P, w_k = 1 / |d_k|^2), boundary faces contributing their face
+// value at their face centre. The 3 x 3 normal matrices depend on the grid only and are inverted
+// once. Exact for linear fields on any grid, which Green-Gauss with linear face interpolation is
+// not on skewed cells.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "auvloop/mesher/grid.hpp"
+
+namespace auvloop::engine::fv {
+
+class LeastSquaresGradient {
+ public:
+  LeastSquaresGradient(const mesher::Grid& grid, const mesher::GridGeometry& geometry);
+
+  // phi: one value per cell; boundary: one value per boundary face (face index - internal faces).
+  void compute(std::span<const double> phi, std::span<const double> boundary,
+               std::span<Eigen::Vector3d> gradient) const;
+
+ private:
+  const mesher::Grid& grid_;
+  const mesher::GridGeometry& geometry_;
+  std::vector<Eigen::Matrix3d> inverse_;  // per cell
+};
+
+}  // namespace auvloop::engine::fv
