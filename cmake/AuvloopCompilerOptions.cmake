@@ -37,3 +37,15 @@ function(auvloop_embed_text target file symbol)
     COMMENT "Embedding ${file}")
   target_sources(${target} PRIVATE "${_out}")
 endfunction()
+
+# One library per module: auvloop_<name>, aliased auvloop::<name>, public headers in
+# <dir>/include/auvloop/<name>/, warnings from auvloop_options.
+#   auvloop_module(NAME SOURCES ... [PUBLIC deps...] [PRIVATE deps...])
+function(auvloop_module name)
+  cmake_parse_arguments(PARSE_ARGV 1 arg "" "" "SOURCES;PUBLIC;PRIVATE")
+  add_library(auvloop_${name} ${arg_SOURCES})
+  add_library(auvloop::${name} ALIAS auvloop_${name})
+  target_include_directories(auvloop_${name} PUBLIC
+    $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>)
+  target_link_libraries(auvloop_${name} PUBLIC ${arg_PUBLIC} PRIVATE auvloop_options ${arg_PRIVATE})
+endfunction()

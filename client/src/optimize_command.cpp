@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "auvloop/engine/case.hpp"
+#include "auvloop/geometry/file_io.hpp"
 #include "auvloop/geometry/input.hpp"
 #include "auvloop/optimizer/optimizer.hpp"
 #include "auvloop/optimizer/test_functions.hpp"
@@ -227,7 +228,7 @@ void convergence_plot(const fs::path& dir, const optimizer::SurrogateOptimizer& 
     data += fmt::format("{},{},{}\n", n, e.value ? fmt::format("{:.10g}", *e.value) : "",
                         std::isfinite(best) ? fmt::format("{:.10g}", best) : "");
   }
-  results::write_file_atomically(dir / "convergence.csv", data);
+  write_file_atomically(dir / "convergence.csv", data);
   std::string script;
   for (const auto& [term, ext] :
        {std::pair{"pngcairo noenhanced size 1100,650 font 'DejaVu Sans,11'", "png"},
@@ -261,7 +262,7 @@ void save_state(const fs::path& out, const Study& study, const optimizer::Surrog
   }
   state["study"] = {
       {"name", study.name}, {"objective_weights", study.weights}, {"evaluations", evals}};
-  results::write_file_atomically(out / "optimization.json", state.dump(2) + "\n");
+  write_file_atomically(out / "optimization.json", state.dump(2) + "\n");
 }
 
 int run_optimize(const std::string& file, const std::string& out_arg) {

@@ -255,13 +255,7 @@ Vehicle parse_vehicle(std::string_view toml_text, const std::string& source_name
 }
 
 Vehicle load_vehicle(const std::filesystem::path& path) {
-  auto doc = input::Document::load(path);
-  auto root = doc.root();
-  Vehicle v = read_vehicle(root);
-  root.finish();
-  doc.check();
-  v.source = path.string();
-  return v;
+  return parse_vehicle(input::read_file(path), path.string());
 }
 
 std::vector<std::string> preset_names() {

@@ -3,7 +3,7 @@
 
 #include <fmt/format.h>
 
-#include "auvloop/geometry/atomic_file.hpp"
+#include "auvloop/geometry/file_io.hpp"
 
 namespace auvloop::mesher {
 namespace fs = std::filesystem;

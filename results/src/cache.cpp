@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "auvloop/results/cache.hpp"
 
-#include <fstream>
-#include <sstream>
+#include "auvloop/geometry/file_io.hpp"
+
 #include <stdexcept>
 
 namespace auvloop::results {
@@ -13,12 +13,6 @@ bool valid_key(const std::string& key) {
   return key.size() == 64 && key.find_first_not_of("0123456789abcdef") == std::string::npos;
 }
 
-std::string read_all(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 }  // namespace
 
 ResultCache::ResultCache(fs::path root) : root_(std::move(root)) {
@@ -56,7 +50,7 @@ ResultCache::Lookup ResultCache::lookup(const std::string& key) const {
       return out;
     }
     if (!fs::exists(dir / file) ||
-        sha256_hex(read_all(dir / file)) != sums[file].get<std::string>()) {
+        sha256_hex(read_file_text(dir / file)) != sums[file].get<std::string>()) {
       out.problem = std::string(file) + " is missing or does not match its checksum";
       return out;
     }

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "auvloop/results/run_directory.hpp"
 
-#include "auvloop/geometry/atomic_file.hpp"
+#include "auvloop/geometry/file_io.hpp"
 
 #include <fcntl.h>
 #include <spawn.h>
@@ -45,14 +45,6 @@ void write_text(const fs::path& path, const std::string& text) {
   out << text;
   out.close();
   if (!out) throw std::runtime_error(fmt::format("cannot write {}", path.string()));
-}
-
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(fmt::format("cannot read {}", path.string()));
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 
 std::string csv(const engine::TimeSeries& series) {
@@ -181,10 +173,6 @@ const std::vector<Figure>& standard_figures() {
 
 }  // namespace
 
-void write_file_atomically(const fs::path& path, const std::string& text) {
-  auvloop::write_file_atomically(path, text);
-}
-
 std::optional<std::string> run_gnuplot(const fs::path& dir, const std::string& script) {
   const fs::path file = dir / "plots.gp";
   write_text(file, "cd " + gnuplot_quote(dir.string()) +
@@ -283,13 +271,13 @@ StoredRun read_run_directory(const fs::path& dir) {
   if (!fs::is_directory(dir))
     throw std::runtime_error(fmt::format("{}: not a result directory", dir.string()));
   try {
-    run.manifest = json::parse(read_text(dir / "manifest.json"));
-    run.metrics = json::parse(read_text(dir / "metrics.json"));
+    run.manifest = json::parse(read_file_text(dir / "manifest.json"));
+    run.metrics = json::parse(read_file_text(dir / "metrics.json"));
   } catch (const json::exception& e) {
     throw std::runtime_error(
         fmt::format("{}: damaged result directory: {}", dir.string(), e.what()));
   }
-  std::istringstream in(read_text(dir / "timeseries.csv"));
+  std::istringstream in(read_file_text(dir / "timeseries.csv"));
   std::string line;
   std::getline(in, line);
   std::vector<std::size_t> columns;

@@ -54,8 +54,6 @@ StoredRun read_run_directory(const std::filesystem::path& dir);
 // Runs a gnuplot script in `dir` (prepends the common settings); returns a warning when plots
 // could not be made (gnuplot missing or failing), nothing on success.
 std::optional<std::string> run_gnuplot(const std::filesystem::path& dir, const std::string& script);
-// Writes `text` to `path` atomically (temporary file, then rename).
-void write_file_atomically(const std::filesystem::path& path, const std::string& text);
 
 // Overlays several runs in the standard plots, written to `dir` (atomically, like a run).
 WriteOutcome write_comparison(const std::filesystem::path& dir, const std::vector<StoredRun>& runs,
