@@ -14,6 +14,7 @@ packages=(
   libtbb-dev libtomlplusplus-dev nlohmann-json3-dev libcli11-dev libspdlog-dev libfmt-dev
   # scheduler: RPC and persistent state
   libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler libsqlite3-dev
+  libsqlitecpp-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
   # results: plots (PNG and SVG through cairo) and content hashes

@@ -8,6 +8,7 @@
 #include "auvloop/geometry/error.hpp"
 #include "auvloop/geometry/input.hpp"
 #include "cli.hpp"
+#include "daemon_connection.hpp"
 
 namespace {
 constexpr const char* kFooter = R"(Exit codes:
@@ -15,7 +16,8 @@ constexpr const char* kFooter = R"(Exit codes:
   1  internal error (a bug: please report it)
   2  bad command line
   3  invalid input file (the message gives file:line:column and the field)
-  4  the work failed (geometry impossible, file unreadable or unwritable)
+  4  the work failed (geometry impossible, file unreadable or unwritable, a job failed)
+  5  no daemon answers (start one: auvloop daemon start)
 
 Vehicles: a TOML file (docs/vehicle-file.md) or preset:NAME; without one, preset:remus100.
 Units are SI; angles on the command line and in files are degrees.)";
@@ -32,6 +34,9 @@ int main(int argc, char** argv) {
   cli::register_geometry_commands(app);
   cli::register_run_commands(app, exit_code);
   cli::register_optimize_command(app, exit_code);
+  cli::register_daemon_commands(app, exit_code);
+  cli::register_job_commands(app, exit_code);
+  cli::register_results_commands(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -43,6 +48,12 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     app.exit(e);
     return cli::kUsage;
+  } catch (const cli::DaemonUnavailable& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return cli::kUnavailable;
+  } catch (const cli::RpcError& e) {
+    fmt::print(stderr, "error: the daemon refused: {}\n", e.what());
+    return e.code == grpc::StatusCode::INVALID_ARGUMENT ? cli::kBadInput : cli::kFailed;
   } catch (const input::InputError& e) {
     fmt::print(stderr, "error: invalid input:\n{}\n", e.what());
     return cli::kBadInput;

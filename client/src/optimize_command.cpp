@@ -11,211 +11,18 @@
 #include "auvloop/geometry/file_io.hpp"
 #include "auvloop/geometry/input.hpp"
 #include "auvloop/optimizer/optimizer.hpp"
-#include "auvloop/optimizer/test_functions.hpp"
 #include "auvloop/results/manoeuvre_metrics.hpp"
 #include "auvloop/results/run_directory.hpp"
+#include "auvloop/scheduler/study.hpp"
 #include "cli.hpp"
+#include "daemon_connection.hpp"
 
 namespace auvloop::cli {
 namespace {
 namespace fs = std::filesystem;
-using input::Range;
 using nlohmann::json;
 
-// The indices an objective may use, and where they live in metrics.json.
-const std::vector<std::pair<std::string, std::string>>& objective_indices() {
-  static const std::vector<std::pair<std::string, std::string>> m{
-      {"itae", "itae_deg_s2"},
-      {"iae", "iae_deg_s"},
-      {"ise", "ise_deg2_s"},
-      {"overshoot", "overshoot_percent"},
-      {"settling_time", "settling_time_s"},
-      {"rise_time", "rise_time_s"},
-      {"rudder_variation", "rudder.total_variation_deg"}};
-  return m;
-}
-
-std::vector<std::string> index_names() {
-  std::vector<std::string> n;
-  for (const auto& [k, v] : objective_indices()) n.push_back(k);
-  return n;
-}
-
-struct Study {
-  std::string name;
-  std::optional<engine::CaseSpec> base_case;        // a case, or ...
-  std::optional<optimizer::TestFunction> function;  // ... a test function
-  optimizer::OptimizerConfig config;
-  std::map<std::string, double> weights;                     // objective = sum w * index
-  std::optional<double> max_overshoot, max_saturation_time;  // constraints
-};
-
-// A metric from metrics.json by dotted path; "not settled" counts as the whole run's duration.
-std::optional<double> metric(const json& m, const std::string& path, double duration) {
-  const json* node = &m;
-  std::size_t start = 0;
-  while (start <= path.size()) {
-    const auto dot = path.find('.', start);
-    const std::string key = path.substr(start, dot - start);
-    if (!node->contains(key)) return std::nullopt;
-    node = &(*node)[key];
-    if (dot == std::string::npos) break;
-    start = dot + 1;
-  }
-  if (node->is_null()) return path == "settling_time_s" ? std::optional(duration) : std::nullopt;
-  return node->get<double>();
-}
-
-Study read_study(const fs::path& path) {
-  auto doc = input::Document::load(path);
-  auto root = doc.root();
-  Study s;
-  s.name = root.text("name");
-  root.text_or("description", "");
-  auto problem = root.table("problem");
-  const std::string type = problem.choice("type", {"case", "test-function"});
-  auto& c = s.config;
-  if (type == "case") {
-    const std::string case_file = problem.text("case");
-    try {
-      s.base_case = engine::load_case(path.parent_path() / case_file);
-      if (!std::holds_alternative<engine::HeadingStepSpec>(s.base_case->manoeuvre)) {
-        problem.fail("case", "only heading-step cases have gains to tune");
-      }
-    } catch (const input::InputError& e) {
-      problem.fail("case", fmt::format("the case cannot be used:\n{}", e.what()));
-    }
-    for (auto p : root.tables("parameter", 1, 3)) {
-      c.names.push_back(p.choice("name", {"kp", "ki", "kd"}));
-      const double lo = p.number("lower", Range::non_negative(), "");
-      const double hi = p.number("upper", Range::non_negative(), "");
-      if (!(hi > lo))
-        p.fail("upper",
-               fmt::format("must exceed lower = {:g} (bounds reversed or of zero width)", lo));
-      c.lower.conservativeResize(c.lower.size() + 1);
-      c.upper.conservativeResize(c.upper.size() + 1);
-      c.lower[c.lower.size() - 1] = lo;
-      c.upper[c.upper.size() - 1] = hi;
-      p.finish();
-    }
-  } else {
-    const std::string fname =
-        problem.choice("function", {"branin", "goldstein-price", "hartmann3", "hartmann6"});
-    s.function = optimizer::test_function(fname);
-    c.lower = s.function->lower;
-    c.upper = s.function->upper;
-    for (Eigen::Index k = 0; k < c.lower.size(); ++k) c.names.push_back(fmt::format("x{}", k + 1));
-    root.ignore("parameter");
-  }
-  problem.finish();
-  if (auto obj = root.optional_table("objective")) {
-    const std::string index = obj->choice_or("index", "itae",
-                                             {"itae", "iae", "ise", "overshoot", "settling_time",
-                                              "rise_time", "rudder_variation", "weighted"});
-    if (index == "weighted") {
-      auto w = obj->table("weights");
-      for (const auto& name : index_names()) {
-        if (w.has(name)) s.weights[name] = w.number(name, Range::non_negative(), "");
-      }
-      w.finish();
-      if (s.weights.empty())
-        obj->fail("weights", "give at least one weight (itae, overshoot, ...)");
-    } else {
-      s.weights[index] = 1.0;
-    }
-    obj->finish();
-  } else {
-    s.weights["itae"] = 1.0;
-  }
-  if (auto con = root.optional_table("constraints")) {
-    if (con->has("max_overshoot"))
-      s.max_overshoot = con->number("max_overshoot", Range::non_negative(), "%");
-    if (con->has("max_time_at_saturation"))
-      s.max_saturation_time = con->number("max_time_at_saturation", Range::non_negative(), "s");
-    con->finish();
-  }
-  if (auto o = root.optional_table("optimizer")) {
-    c.initial_points = static_cast<int>(o->integer_or("initial_points", 20, 2, 10000));
-    c.max_iterations = static_cast<int>(o->integer_or("max_iterations", 15, 0, 10000));
-    c.epsilon = o->number_or("epsilon", 1e-3, Range::non_negative(), "");
-    c.relative_epsilon = o->boolean_or("relative_epsilon", false);
-    c.patience = static_cast<int>(o->integer_or("patience", 1, 1, 1000));
-    c.batch_size = static_cast<int>(o->integer_or("batch_size", 2, 1, 64));
-    c.solver = o->choice_or("solver", "pso", {"pso", "nlopt"});
-    c.failure_policy = o->choice_or("failure_policy", "classify", {"classify", "impute"});
-    c.seed = static_cast<std::uint64_t>(
-        o->integer_or("seed", 1, 0, std::numeric_limits<std::int64_t>::max()));
-    if (auto t = o->optional_numbers("theta_bounds", 2, 2, Range::positive(), "")) {
-      c.kriging.theta_min = (*t)[0];
-      c.kriging.theta_max = (*t)[1];
-      if (c.kriging.theta_min >= c.kriging.theta_max)
-        o->fail("theta_bounds", "the lower bound must be below the upper");
-    }
-    o->finish();
-  }
-  root.finish();
-  doc.check();
-  return s;
-}
-
-struct Outcome {
-  std::optional<double> value;
-  std::string failure;
-  json metrics;
-};
-
-engine::CaseSpec with_gains(const Study& s, const Eigen::VectorXd& x) {
-  engine::CaseSpec c = *s.base_case;
-  auto& gains = std::get<engine::HeadingStepSpec>(c.manoeuvre).gains;
-  for (std::size_t k = 0; k < s.config.names.size(); ++k) {
-    const double v = x[static_cast<Eigen::Index>(k)];
-    const auto& n = s.config.names[k];
-    (n == "kp" ? gains.kp : n == "ki" ? gains.ki : gains.kd) = v;
-  }
-  return c;
-}
-
-Outcome evaluate(const Study& s, const Eigen::VectorXd& x) {
-  if (s.function) return {s.function->f(x), "", json::object()};
-  const engine::CaseSpec c = with_gains(s, x);
-  const engine::CaseRun run = engine::run_case(c);
-  if (run.loop.failure) return {std::nullopt, *run.loop.failure, json::object()};
-  Outcome o;
-  o.metrics = results::manoeuvre_metrics(c, run.loop.series);
-  double total = 0;
-  for (const auto& [name, w] : s.weights) {
-    const auto path =
-        std::find_if(objective_indices().begin(), objective_indices().end(), [&](const auto& p) {
-          return p.first == name;
-        })->second;
-    const auto v = metric(o.metrics, path, c.duration);
-    if (!v) return {std::nullopt, "index " + name + " is undefined for this response", o.metrics};
-    total += w * *v;
-  }
-  if (s.max_overshoot && o.metrics["overshoot_percent"].get<double>() > *s.max_overshoot) {
-    o.failure = fmt::format("overshoot {:.3g} % exceeds the limit {:g} %",
-                            o.metrics["overshoot_percent"].get<double>(), *s.max_overshoot);
-    return o;
-  }
-  if (s.max_saturation_time &&
-      o.metrics["rudder"]["time_at_saturation_s"].get<double>() > *s.max_saturation_time) {
-    o.failure = fmt::format("rudder saturated for {:.3g} s, more than {:g} s",
-                            o.metrics["rudder"]["time_at_saturation_s"].get<double>(),
-                            *s.max_saturation_time);
-    return o;
-  }
-  o.value = total;
-  return o;
-}
-
-std::string point_text(const Study& s, const Eigen::VectorXd& x) {
-  std::string t;
-  for (std::size_t k = 0; k < s.config.names.size(); ++k) {
-    t += fmt::format("{}{} {:.4g}", k ? ", " : "", s.config.names[k],
-                     x[static_cast<Eigen::Index>(k)]);
-  }
-  return t;
-}
+using scheduler::Study;
 
 void convergence_plot(const fs::path& dir, const optimizer::SurrogateOptimizer& opt,
                       const std::string& name) {
@@ -266,7 +73,7 @@ void save_state(const fs::path& out, const Study& study, const optimizer::Surrog
 }
 
 int run_optimize(const std::string& file, const std::string& out_arg) {
-  const Study study = read_study(file);
+  const Study study = scheduler::parse_study_bundle(scheduler::bundle_study_file(file));
   const fs::path out = out_arg.empty() ? fs::path("out") / study.name : fs::path(out_arg);
   fs::create_directories(out);
   optimizer::SurrogateOptimizer opt(study.config);
@@ -278,7 +85,7 @@ int run_optimize(const std::string& file, const std::string& out_arg) {
     std::vector<std::optional<double>> values;
     std::vector<std::string> failures;
     for (const auto& x : batch->points) {
-      const Outcome o = evaluate(study, x);
+      const scheduler::Outcome o = scheduler::evaluate_in_process(study, x);
       values.push_back(o.value);
       failures.push_back(o.failure);
       indices.push_back(o.metrics);
@@ -292,7 +99,8 @@ int run_optimize(const std::string& file, const std::string& out_arg) {
     }
     fmt::print("  batch {:>2} ({:>2} points{}{}) best {:.6g} at {}\n", batch->index,
                batch->points.size(), vals.empty() ? "" : ": ", vals,
-               best ? *best->value : std::nan(""), best ? point_text(study, best->x) : "-");
+               best ? *best->value : std::nan(""),
+               best ? scheduler::point_text(study, best->x) : "-");
     save_state(out, study, opt, indices);
   }
   save_state(out, study, opt, indices);  // with the stop reason
@@ -306,13 +114,14 @@ int run_optimize(const std::string& file, const std::string& out_arg) {
     return kFailed;
   }
   fmt::print("best: {} = {:.6g} at {}\n", study.function ? "f" : "objective", *best->value,
-             point_text(study, best->x));
+             scheduler::point_text(study, best->x));
   convergence_plot(out, opt, study.name);
   if (study.base_case) {
     // Before (the case's own gains) and after (the best gains), as runs, plots and a table.
     std::vector<results::StoredRun> runs;
-    for (const auto& [label, c] : {std::pair{std::string("before"), *study.base_case},
-                                   std::pair{std::string("after"), with_gains(study, best->x)}}) {
+    for (const auto& [label, c] :
+         {std::pair{std::string("before"), *study.base_case},
+          std::pair{std::string("after"), scheduler::with_gains(study, best->x)}}) {
       const auto r = engine::run_case(c);
       results::RunReport report{c.name + "-" + label, engine::canonical_json(c),
                                 r.loop.series,        results::manoeuvre_metrics(c, r.loop.series),
@@ -323,7 +132,8 @@ int run_optimize(const std::string& file, const std::string& out_arg) {
     }
     results::write_comparison(out / "before-after", runs, {"before", "after"});
     const auto& g0 = std::get<engine::HeadingStepSpec>(study.base_case->manoeuvre).gains;
-    const auto g1 = std::get<engine::HeadingStepSpec>(with_gains(study, best->x).manoeuvre).gains;
+    const auto g1 =
+        std::get<engine::HeadingStepSpec>(scheduler::with_gains(study, best->x).manoeuvre).gains;
     fmt::print("\n{:<28} {:>14} {:>14}\n", "", "before", "after");
     fmt::print("{:<28} {:>14} {:>14}\n", "Kp / Ki / Kd",
                fmt::format("{:.3g}/{:.3g}/{:.3g}", g0.kp, g0.ki, g0.kd),
@@ -350,12 +160,22 @@ int run_optimize(const std::string& file, const std::string& out_arg) {
 void register_optimize_command(CLI::App& app, int& exit_code) {
   auto file = std::make_shared<std::string>();
   auto out = std::make_shared<std::string>();
+  auto daemon = std::make_shared<bool>(false);
+  auto wait = std::make_shared<bool>(false);
+  auto json = std::make_shared<bool>(false);
+  auto co = std::make_shared<ConnectOptions>();
   auto* cmd = app.add_subcommand(
       "optimize", "Tune PID gains (or a test function) with the Kriging surrogate optimizer");
   cmd->add_option("file", *file, "Optimisation file (TOML); see examples/pid-optimization.toml")
       ->required()
       ->check(CLI::ExistingFile);
   cmd->add_option("--out,-o", *out, "Output directory (default: out/NAME)");
+  cmd->add_flag("--daemon,-d", *daemon,
+                "Submit to the daemon instead: evaluations run as parallel jobs, are cached, and "
+                "survive a restart");
+  cmd->add_flag("--wait,-w", *wait, "With --daemon: follow it until it ends");
+  cmd->add_flag("--json", *json, "With --daemon: machine-readable output");
+  add_connect_options(cmd, *co, true);
   cmd->footer(
       "Runs in-process on the case's plant: the Latin hypercube first, then EI + MSP batches "
       "until\n"
@@ -363,7 +183,9 @@ void register_optimize_command(CLI::App& app, int& exit_code) {
       "iteration limit. Writes optimization.json after every batch, then convergence plots and,\n"
       "for a case, before/after runs and their comparison.\n"
       "Example: auvloop optimize examples/pid-optimization.toml");
-  cmd->callback([file, out, &exit_code] { exit_code = run_optimize(*file, *out); });
+  cmd->callback([=, &exit_code] {
+    exit_code = *daemon ? optimize_on_daemon(*co, *file, *wait, *json) : run_optimize(*file, *out);
+  });
 }
 
 }  // namespace auvloop::cli

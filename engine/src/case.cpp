@@ -101,7 +101,7 @@ void read_actuators(Table root, CaseSpec& c) {
   }
 }
 
-void read_body(Table root, CaseSpec& c, const std::filesystem::path& base_dir) {
+void read_body(Table root, CaseSpec& c, const VehicleResolver& resolve_vehicle) {
   c.name = root.text("name");
   c.description = root.text_or("description", "");
   c.vehicle_spec = root.text_or("vehicle", "preset:remus100");
@@ -114,11 +114,7 @@ void read_body(Table root, CaseSpec& c, const std::filesystem::path& base_dir) {
                    ? Buoyancy::neutral
                    : Buoyancy::vehicle;
   try {
-    const bool preset = c.vehicle_spec.starts_with("preset:");
-    const std::string spec = preset || std::filesystem::path(c.vehicle_spec).is_absolute()
-                                 ? c.vehicle_spec
-                                 : (base_dir / c.vehicle_spec).string();
-    c.vehicle = load_vehicle_model(spec);
+    c.vehicle = resolve_vehicle(c.vehicle_spec);
   } catch (const input::InputError& e) {
     root.fail("vehicle", fmt::format("the vehicle cannot be used:\n{}", e.what()));
   } catch (const std::invalid_argument& e) {
@@ -152,12 +148,25 @@ std::string CaseSpec::manoeuvre_type() const {
   return names[manoeuvre.index()];
 }
 
+VehicleResolver file_vehicle_resolver(const std::filesystem::path& base_dir) {
+  return [base_dir](const std::string& spec) {
+    const bool preset = spec.starts_with("preset:");
+    return load_vehicle_model(
+        preset || std::filesystem::path(spec).is_absolute() ? spec : (base_dir / spec).string());
+  };
+}
+
 CaseSpec parse_case(std::string_view text, const std::string& source_name,
                     const std::filesystem::path& base_dir) {
+  return parse_case(text, source_name, file_vehicle_resolver(base_dir));
+}
+
+CaseSpec parse_case(std::string_view text, const std::string& source_name,
+                    const VehicleResolver& resolve_vehicle) {
   auto doc = input::Document::parse(text, source_name);
   auto root = doc.root();
   CaseSpec c;
-  read_body(root, c, base_dir);
+  read_body(root, c, resolve_vehicle);
   read_initial(root, c);
   read_actuators(root, c);
   c.manoeuvre = read_manoeuvre(root, root.table("manoeuvre"), c.rudder);

@@ -67,10 +67,18 @@ struct CaseSpec {
   [[nodiscard]] std::string manoeuvre_type() const;  // "heading-step", ...
 };
 
+// Finds the vehicle named by a case's `vehicle` key (a preset:NAME or a path as written). The
+// daemon resolves paths against files sent with the request instead of its own file system.
+using VehicleResolver = std::function<VehicleModel(const std::string& spec)>;
+// Presets, and paths relative to `base_dir`.
+VehicleResolver file_vehicle_resolver(const std::filesystem::path& base_dir);
+
 // Throws input::InputError listing every problem with file:line.
 CaseSpec load_case(const std::filesystem::path& path);
 CaseSpec parse_case(std::string_view text, const std::string& source_name,
                     const std::filesystem::path& base_dir);
+CaseSpec parse_case(std::string_view text, const std::string& source_name,
+                    const VehicleResolver& resolve_vehicle);
 
 // Every input that determines the result, defaults filled in and the vehicle (coefficients
 // included) resolved, so equal JSON means equal results. Angles in degrees as in the file.

@@ -1,0 +1,460 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The job queue: submission, cache hits, dispatch onto the backend, completion.
+#include "auvloop/scheduler/scheduler.hpp"
+
+#include <unistd.h>
+
+#include <charconv>
+#include <fstream>
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include "auvloop/geometry/file_io.hpp"
+#include "auvloop/geometry/input.hpp"
+#include "auvloop/results/run_directory.hpp"
+#include "auvloop/scheduler/worker.hpp"
+#include "scheduler_runtime.hpp"
+
+namespace auvloop::scheduler {
+namespace fs = std::filesystem;
+using nlohmann::json;
+using Kind = RequestError::Kind;
+
+std::int64_t parse_id(const std::string& id, char kind) {
+  std::int64_t n = 0;
+  const bool ok =
+      id.size() >= 2 && id.size() <= 20 && id[0] == kind &&
+      std::from_chars(id.data() + 1, id.data() + id.size(), n).ptr == id.data() + id.size() &&
+      n > 0;
+  if (!ok) {
+    throw RequestError(Kind::invalid_argument,
+                       fmt::format("'{}' is not a {} id (expected {}<number>)", id.substr(0, 64),
+                                   kind == 'j' ? "job" : "optimisation", kind));
+  }
+  return n;
+}
+std::string job_id(std::int64_t id) {
+  return fmt::format("j{}", id);
+}
+std::string optimization_id(std::int64_t id) {
+  return fmt::format("o{}", id);
+}
+
+namespace {
+void check_source(const SourceBundle& s) {
+  if (s.toml.size() > kMaxSourceBytes || s.source_name.size() > 4096 ||
+      s.files.size() > kMaxSourceFiles) {
+    throw RequestError(Kind::invalid_argument,
+                       fmt::format("the request is too large (at most {} files of {} bytes)",
+                                   kMaxSourceFiles, kMaxSourceBytes));
+  }
+  for (const auto& [name, text] : s.files) {
+    if (name.size() > 4096 || text.size() > kMaxSourceBytes) {
+      throw RequestError(Kind::invalid_argument, "an attached file is too large");
+    }
+  }
+}
+
+// The last lines of a worker's log, for a failure message.
+std::string log_tail(const fs::path& log, std::size_t max_lines = 6) {
+  std::ifstream in(log);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) {
+    lines.push_back(line.substr(0, 300));
+    if (lines.size() > max_lines) lines.erase(lines.begin());
+  }
+  std::string out;
+  for (const auto& l : lines) out += "\n  | " + l;
+  return out;
+}
+
+fs::path job_dir(const SchedulerConfig& c, std::int64_t id) {
+  return c.state_dir / "jobs" / job_id(id);
+}
+}  // namespace
+
+Scheduler::Scheduler(SchedulerConfig config, std::unique_ptr<ExecutionBackend> backend)
+    : config_(std::move(config)),
+      backend_(std::move(backend)),
+      cache_((fs::create_directories(config_.state_dir / "cache"), config_.state_dir / "cache")) {
+  fs::create_directories(config_.state_dir / "jobs");
+  store_ = std::make_unique<StateStore>(config_.state_dir / "state.db");
+  backend_->set_callbacks(
+      {[this](const std::string& id, double t, double total) { on_progress(id, t, total); },
+       [this](const std::string& id, const ExitInfo& e) { on_finished(id, e); }});
+}
+
+Scheduler::~Scheduler() {
+  stop(false);
+}
+
+void Scheduler::start() {
+  Lock lock(mutex_);
+  const int requeued = store_->requeue_running();
+  if (requeued > 0)
+    spdlog::info("{} job(s) that were running when the daemon stopped are queued again", requeued);
+  for (const auto& rec : store_->optimizations(1 << 30, true)) {
+    StateStore::Transaction t(*store_);
+    try {
+      drive(rec.id);
+      t.commit();
+      spdlog::info("optimisation {} ({}) continues", optimization_id(rec.id), rec.name);
+    } catch (const std::exception& e) {
+      spdlog::error("optimisation {} cannot continue: {}", optimization_id(rec.id), e.what());
+    }
+  }
+  started_ = true;
+  started_at_ = std::chrono::steady_clock::now();
+  dispatcher_ = std::thread([this] { dispatch_loop(); });
+}
+
+void Scheduler::stop(bool drain) {
+  {
+    Lock lock(mutex_);
+    if (!started_ || stopping_) return;
+    stopping_ = true;
+    if (drain) {
+      state_changed_.wait(lock, [this] { return running_.empty(); });
+    }
+  }
+  wake_dispatcher_.notify_all();
+  if (dispatcher_.joinable()) dispatcher_.join();
+  backend_->stop_all();  // their jobs stay `running` in the store: queued again at the next start
+  Lock lock(mutex_);
+  changed();
+}
+
+void Scheduler::changed() {
+  ++version_;
+  state_changed_.notify_all();
+}
+
+std::uint64_t Scheduler::version() {
+  Lock lock(mutex_);
+  return version_;
+}
+
+std::uint64_t Scheduler::wait_for_change(std::uint64_t seen, std::chrono::milliseconds timeout) {
+  Lock lock(mutex_);
+  state_changed_.wait_for(lock, timeout, [&] { return version_ != seen || stopping_; });
+  return version_;
+}
+
+v1::Job Scheduler::submit_case(const SourceBundle& source, double timeout_s) {
+  check_source(source);
+  engine::CaseSpec spec;
+  try {
+    spec = parse_case_bundle(source);
+  } catch (const input::InputError& e) {
+    throw RequestError(Kind::invalid_argument, fmt::format("invalid case:\n{}", e.what()));
+  }
+  JobRecord job;
+  job.name = spec.name;
+  job.key = results::content_hash(engine::canonical_json(spec));
+  job.payload = {{"bundle", to_json(source)}};
+  job.plant = spec.plant == engine::PlantKind::derivative ? "derivative" : "linearized";
+  job.duration_s = spec.duration;
+  job.timeout_s = timeout_s > 0 ? timeout_s : config_.default_timeout_s;
+  job.created_ms = now_ms();
+  Lock lock(mutex_);
+  if (stopping_) throw RequestError(Kind::failed_precondition, "the daemon is shutting down");
+  StateStore::Transaction t(*store_);
+  store_->insert_job(job);
+  complete_from_cache(job);
+  t.commit();
+  changed();
+  wake_dispatcher_.notify_all();
+  return to_proto(job);
+}
+
+// Completes a job from the cache when its result is there; a corrupt entry is removed (and the
+// job computed again).
+bool Scheduler::complete_from_cache(JobRecord& job) {
+  const auto hit = cache_.lookup(job.key);
+  if (hit.state == results::ResultCache::State::corrupt) {
+    spdlog::warn("cache entry {} is corrupt ({}); it is removed and computed again", job.key,
+                 hit.problem);
+    cache_.remove(job.key);
+    store_->forget_result(job.key);
+    return false;
+  }
+  if (hit.state != results::ResultCache::State::valid) return false;
+  const auto& m = hit.run->manifest;
+  job.cache_hit = job.state != "running";
+  job.state = m.value("failure", json()).is_string() ? "failed" : "succeeded";
+  job.failure = job.state == "failed" ? m["failure"].get<std::string>() : "";
+  job.finished_ms = now_ms();
+  if (job.started_ms == 0) job.started_ms = job.finished_ms;
+  finish_job(job);
+  return true;
+}
+
+void Scheduler::finish_job(JobRecord& job) {
+  store_->update_job(job);
+  progress_.erase(job.id);
+  if (job.state == "succeeded" || (job.state == "failed" && cache_.lookup(job.key).run)) {
+    const auto existing = store_->result(job.key);
+    store_->record_result({job.key, job.name, job.plant,
+                           job.state == "succeeded" ? "completed" : "failed", job.failure,
+                           existing ? existing->created_ms : job.finished_ms,
+                           existing ? existing->job_id : job.id});
+  }
+  if (job.optimization_id) tell(*job.optimization_id, job);
+}
+
+void Scheduler::dispatch_loop() {
+  Lock lock(mutex_);
+  while (!stopping_) {
+    try {
+      launch_ready(lock);
+    } catch (const std::exception& e) {
+      spdlog::error("dispatch: {}", e.what());  // never let one bad job stop the daemon
+    }
+    wake_dispatcher_.wait_for(lock, std::chrono::milliseconds(500));
+  }
+}
+
+void Scheduler::launch_ready(Lock& /*lock*/) {
+  if (static_cast<int>(running_.size()) >= config_.slots) return;
+  std::set<std::string> busy;
+  for (const auto& [id, key] : running_) busy.insert(key);
+  for (const auto& [id, key] : store_->queued_jobs()) {
+    if (static_cast<int>(running_.size()) >= config_.slots) break;
+    if (busy.contains(key)) continue;  // an identical job runs: this one waits for its result
+    auto job = store_->job(id);
+    if (!job || job->state != "queued") continue;
+    StateStore::Transaction t(*store_);
+    if (!complete_from_cache(*job)) {
+      launch(*job);
+      busy.insert(key);
+    }
+    t.commit();
+    changed();
+  }
+}
+
+void Scheduler::launch(JobRecord& job) {
+  const fs::path dir = job_dir(config_, job.id);
+  fs::create_directories(dir);
+  write_file_atomically(dir / "job.json",
+                        json{{"key", job.key}, {"payload", job.payload}}.dump() + "\n");
+  job.state = "running";
+  job.started_ms = now_ms();
+  ++job.attempts;
+  try {
+    backend_->start(
+        {job_id(job.id),
+         {config_.worker_executable.string(), "worker", "--job", (dir / "job.json").string(),
+          "--cache", (config_.state_dir / "cache").string(), "--executions",
+          (config_.state_dir / "executions.log").string(), "--progress-fd", "3", "--parent-pid",
+          std::to_string(getpid())},
+         dir / "worker.log",
+         job.timeout_s});
+    running_[job.id] = job.key;
+    store_->update_job(job);
+  } catch (const std::exception& e) {
+    job.state = "failed";
+    job.failure = fmt::format("the worker could not be started: {}", e.what());
+    job.finished_ms = now_ms();
+    finish_job(job);
+  }
+}
+
+void Scheduler::on_progress(const std::string& id, double t, double /*total*/) {
+  Lock lock(mutex_);
+  progress_[parse_id(id, 'j')] = t;
+  changed();
+}
+
+std::string Scheduler::failure_text(const JobRecord& job, const ExitInfo& exit) const {
+  const fs::path log = job_dir(config_, job.id) / "worker.log";
+  if (exit.timed_out) {
+    return fmt::format("timed out after {:g} s (the worker was stopped); log: {}{}", job.timeout_s,
+                       log.string(), log_tail(log));
+  }
+  return fmt::format("the worker {}; log: {}{}",
+                     exit.signal ? exit.describe() : "ended with " + exit.describe(), log.string(),
+                     log_tail(log));
+}
+
+void Scheduler::on_finished(const std::string& id_text, const ExitInfo& exit) {
+  Lock lock(mutex_);
+  const std::int64_t id = parse_id(id_text, 'j');
+  running_.erase(id);
+  const bool cancelled = cancelling_.erase(id) > 0;
+  auto job = store_->job(id);
+  if (!job || job->state != "running") return;
+  if (stopping_ && !cancelled) return;  // stays `running`: queued again at the next start
+  try {
+    StateStore::Transaction t(*store_);
+    job->finished_ms = now_ms();
+    if (cancelled) {
+      job->state = "cancelled";
+      job->failure = "cancelled by the user";
+      finish_job(*job);
+    } else if (!exit.ok() || !complete_from_cache(*job)) {
+      job->state = "failed";
+      job->failure = exit.ok() ? "the worker ended without storing a usable result; log: " +
+                                     (job_dir(config_, id) / "worker.log").string()
+                               : failure_text(*job, exit);
+      finish_job(*job);
+    }
+    t.commit();
+  } catch (const std::exception& e) {
+    spdlog::error("job {}: recording its end failed: {}", id_text, e.what());
+  }
+  changed();
+  wake_dispatcher_.notify_all();
+}
+
+int Scheduler::cancel_job(std::int64_t id) {
+  Lock lock(mutex_);
+  auto job = store_->job(id);
+  if (!job) throw RequestError(Kind::not_found, fmt::format("no job {}", job_id(id)));
+  if (!job->active()) return 0;
+  if (job->state == "running") {
+    cancelling_.insert(id);
+    backend_->cancel(job_id(id));
+    return 1;
+  }
+  StateStore::Transaction t(*store_);
+  job->state = "cancelled";
+  job->failure = "cancelled by the user";
+  job->finished_ms = now_ms();
+  finish_job(*job);
+  t.commit();
+  changed();
+  return 1;
+}
+
+v1::Job Scheduler::job(std::int64_t id) {
+  Lock lock(mutex_);
+  auto job = store_->job(id);
+  if (!job) throw RequestError(Kind::not_found, fmt::format("no job {}", job_id(id)));
+  return to_proto(*job);
+}
+
+std::vector<v1::Job> Scheduler::jobs(const StateStore::JobFilter& filter) {
+  Lock lock(mutex_);
+  std::vector<v1::Job> out;
+  for (const auto& j : store_->jobs(filter)) out.push_back(to_proto(j));
+  return out;
+}
+
+v1::Job Scheduler::to_proto(const JobRecord& j) {
+  v1::Job p;
+  p.set_id(job_id(j.id));
+  p.set_name(j.name);
+  static const std::map<std::string, v1::State> states{{"queued", v1::QUEUED},
+                                                       {"running", v1::RUNNING},
+                                                       {"succeeded", v1::SUCCEEDED},
+                                                       {"failed", v1::FAILED},
+                                                       {"cancelled", v1::CANCELLED}};
+  p.set_state(states.at(j.state));
+  p.set_key(j.key);
+  p.set_cache_hit(j.cache_hit);
+  p.set_failure(j.failure);
+  const auto it = progress_.find(j.id);
+  p.set_simulated_time_s(j.state == "succeeded"  ? j.duration_s
+                         : it != progress_.end() ? it->second
+                                                 : 0.0);
+  p.set_duration_s(j.duration_s);
+  p.set_created_ms(j.created_ms);
+  p.set_started_ms(j.started_ms);
+  p.set_finished_ms(j.finished_ms);
+  if (j.optimization_id) {
+    p.set_optimization_id(optimization_id(*j.optimization_id));
+    p.set_batch(j.batch);
+    p.set_point(j.point);
+  }
+  p.set_log_path((job_dir(config_, j.id) / "worker.log").string());
+  if (j.state == "succeeded" || j.cache_hit) p.set_result_path(cache_.path_of(j.key).string());
+  if (j.state == "queued") {
+    for (const auto& [rid, key] : running_) {
+      if (key == j.key) p.set_waiting_for(job_id(rid));
+    }
+  }
+  p.set_plant(j.plant);
+  p.set_attempts(j.attempts);
+  return p;
+}
+
+std::vector<v1::Result> Scheduler::results(int limit) {
+  Lock lock(mutex_);
+  std::vector<v1::Result> out;
+  for (const auto& r : store_->results(limit)) {
+    v1::Result p;
+    p.set_key(r.key);
+    p.set_name(r.name);
+    p.set_plant(r.plant);
+    p.set_status(r.status);
+    p.set_failure(r.failure);
+    p.set_created_ms(r.created_ms);
+    p.set_path(cache_.path_of(r.key).string());
+    out.push_back(std::move(p));
+  }
+  return out;
+}
+
+v1::Result Scheduler::result(const std::string& key, bool with_manifest) {
+  Lock lock(mutex_);
+  const auto hit = cache_.lookup(key);
+  if (hit.state == results::ResultCache::State::missing) {
+    throw RequestError(Kind::not_found, fmt::format("no cached result {}", key));
+  }
+  if (hit.state == results::ResultCache::State::corrupt) {
+    throw RequestError(Kind::failed_precondition,
+                       fmt::format("the cached result {} is corrupt: {} (resubmit the case to "
+                                   "compute it again)",
+                                   key, hit.problem));
+  }
+  const auto& m = hit.run->manifest;
+  v1::Result p;
+  p.set_key(key);
+  p.set_name(m.value("name", ""));
+  p.set_plant(m.value("plant", ""));
+  p.set_status(m.value("status", ""));
+  if (m.contains("failure") && m["failure"].is_string()) p.set_failure(m["failure"]);
+  p.set_metrics_json(hit.run->metrics.dump(2));
+  if (with_manifest) p.set_manifest_json(m.dump(2));
+  p.set_path(hit.run->dir.string());
+  if (const auto r = store_->result(key)) p.set_created_ms(r->created_ms);
+  return p;
+}
+
+std::string Scheduler::result_key_of_job(std::int64_t id) {
+  Lock lock(mutex_);
+  auto job = store_->job(id);
+  if (!job) throw RequestError(Kind::not_found, fmt::format("no job {}", job_id(id)));
+  if (job->active()) {
+    throw RequestError(Kind::failed_precondition,
+                       fmt::format("job {} has not finished yet ({})", job_id(id), job->state));
+  }
+  return job->key;
+}
+
+fs::path Scheduler::result_dir(const std::string& key) {
+  return cache_.path_of(key);
+}
+
+v1::DaemonStatus Scheduler::status() {
+  Lock lock(mutex_);
+  v1::DaemonStatus s;
+  s.set_version(results::kEngineVersion);
+  s.set_pid(getpid());
+  s.set_uptime_s(
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started_at_).count());
+  s.set_slots(config_.slots);
+  s.set_running(static_cast<int>(running_.size()));
+  s.set_queued(static_cast<int>(store_->queued_jobs().size()));
+  s.set_state_dir(config_.state_dir.string());
+  s.set_socket(config_.socket);
+  s.set_tcp_port(config_.tcp_port);
+  s.set_jobs_total(store_->count_jobs());
+  s.set_cache_entries(static_cast<std::int64_t>(store_->results(1 << 30).size()));
+  s.set_optimizations_active(static_cast<int>(store_->optimizations(1 << 30, true).size()));
+  return s;
+}
+
+}  // namespace auvloop::scheduler

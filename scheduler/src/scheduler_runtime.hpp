@@ -1,0 +1,17 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// A running optimisation held in memory by the scheduler (private to scheduler/src).
+#pragma once
+
+#include "auvloop/optimizer/optimizer.hpp"
+#include "auvloop/scheduler/scheduler.hpp"
+#include "auvloop/scheduler/study.hpp"
+
+namespace auvloop::scheduler {
+
+struct Scheduler::Runtime {
+  Study study;
+  optimizer::SurrogateOptimizer optimizer;
+  OptimizationRecord record;
+};
+
+}  // namespace auvloop::scheduler

@@ -1,0 +1,135 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "auvloop/scheduler/worker.hpp"
+
+#include <fcntl.h>
+#include <sys/prctl.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstdlib>
+
+#include <fmt/format.h>
+
+#include "auvloop/geometry/file_io.hpp"
+#include "auvloop/geometry/input.hpp"
+#include "auvloop/results/cache.hpp"
+#include "auvloop/results/manoeuvre_metrics.hpp"
+#include "auvloop/scheduler/bundle.hpp"
+
+namespace auvloop::scheduler {
+namespace {
+using nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+// Test hook (docs/scheduler.md): AUVLOOP_WORKER_FAILPOINT="abort:NAME" aborts, "hang:NAME"
+// sleeps forever, when the case is called NAME. Lets the tests crash and hang real workers.
+void failpoint(const std::string& case_name) {
+  const char* fp = std::getenv("AUVLOOP_WORKER_FAILPOINT");
+  if (!fp) return;
+  const std::string f(fp);
+  if (f == "abort:" + case_name) std::abort();
+  if (f == "hang:" + case_name) {
+    for (;;) pause();
+  }
+}
+
+class ProgressChannel {
+ public:
+  explicit ProgressChannel(int fd, double total) : fd_(fd), total_(total) {}
+  void operator()(double t) {
+    const auto now = Clock::now();
+    if (fd_ < 0 || (now - last_ < std::chrono::milliseconds(200) && t < total_)) return;
+    last_ = now;
+    const std::string line = fmt::format("progress {:.6g} {:.6g}\n", t, total_);
+    if (write(fd_, line.data(), line.size()) < 0) fd_ = -1;  // the daemon stopped listening
+  }
+
+ private:
+  int fd_;
+  double total_;
+  Clock::time_point last_{};
+};
+
+void append_execution(const std::filesystem::path& log, const std::string& line) {
+  if (log.empty()) return;
+  const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0600);
+  if (fd < 0) return;
+  // One write of a short line with O_APPEND: lines from concurrent workers never interleave.
+  [[maybe_unused]] const auto n = write(fd, line.data(), line.size());
+  close(fd);
+}
+}  // namespace
+
+engine::CaseSpec case_from_payload(const json& payload) {
+  const SourceBundle bundle = bundle_from_json(payload.at("bundle"));
+  // An optimisation's evaluation names its case inside the optimisation's bundle.
+  engine::CaseSpec c =
+      payload.contains("case")
+          ? parse_bundled_case(bundle_files(bundle), payload["case"], payload["case"])
+          : parse_case_bundle(bundle);
+  if (payload.contains("gains")) {
+    auto* step = std::get_if<engine::HeadingStepSpec>(&c.manoeuvre);
+    if (!step) throw std::invalid_argument("gains given for a case that is not a heading step");
+    for (const auto& [name, value] : payload["gains"].items()) {
+      const double v = value.get<double>();
+      if (name == "kp") {
+        step->gains.kp = v;
+      } else if (name == "ki") {
+        step->gains.ki = v;
+      } else if (name == "kd") {
+        step->gains.kd = v;
+      } else {
+        throw std::invalid_argument("unknown gain " + name);
+      }
+    }
+  }
+  return c;
+}
+
+int run_worker(const WorkerArgs& args) {
+  // Die with the daemon: a killed daemon re-queues this job when it restarts, so a worker left
+  // running would compute it twice.
+  prctl(PR_SET_PDEATHSIG, SIGKILL);
+  if (args.parent_pid != 0 && getppid() != args.parent_pid) return 4;
+  engine::CaseSpec c;
+  std::string key;
+  try {
+    const json job = json::parse(input::read_file(args.job_file));
+    key = job.at("key").get<std::string>();
+    c = case_from_payload(job.at("payload"));
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "worker: the job cannot be read:\n{}\n", e.what());
+    return 3;
+  }
+  const json canonical = engine::canonical_json(c);
+  if (results::content_hash(canonical) != key) {
+    fmt::print(stderr,
+               "worker: the case's content key differs from the daemon's ({}): "
+               "different auvloop versions?\n",
+               key);
+    return 3;
+  }
+  failpoint(c.name);
+  fmt::print("worker: {} ({}), {:g} s simulated at dt {:g} s\n", c.name, key, c.duration, c.dt);
+  ProgressChannel progress(args.progress_fd, c.duration);
+  const auto start = Clock::now();
+  const engine::CaseRun run = engine::run_case(c, [&](double t) { progress(t); });
+  progress(c.duration);
+  const double wall = std::chrono::duration<double>(Clock::now() - start).count();
+  results::RunReport report{
+      c.name,         canonical, run.loop.series, results::manoeuvre_metrics(c, run.loop.series),
+      run.plant_name, wall,      run.loop.failure};
+  try {
+    results::ResultCache(args.cache_root).store(report);
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "worker: the result cannot be stored: {}\n", e.what());
+    return 4;
+  }
+  append_execution(args.executions_log, fmt::format("{} {} {:.6f}\n", key, c.name, wall));
+  fmt::print("worker: {} in {:.3f} s{}\n", run.loop.failure ? "failed" : "done", wall,
+             run.loop.failure ? ": " + *run.loop.failure : "");
+  return 0;
+}
+
+}  // namespace auvloop::scheduler
