@@ -83,6 +83,7 @@ std::string optimization_line(const v1::Optimization& o, Eta& eta) {
 }  // namespace
 
 std::string duration_text(double s) {
+  if (s < 10) return fmt::format("{:.2f} s", s);
   if (s < 60) return fmt::format("{:.0f} s", s);
   if (s < 3600) return fmt::format("{:.0f} min {:02.0f} s", std::floor(s / 60), std::fmod(s, 60));
   return fmt::format("{:.0f} h {:02.0f} min", std::floor(s / 3600), std::fmod(s, 3600) / 60);

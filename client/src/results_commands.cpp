@@ -5,6 +5,8 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "auvloop/geometry/file_io.hpp"
+#include "auvloop/results/run_directory.hpp"
 #include "cli.hpp"
 #include "daemon_connection.hpp"
 #include "job_views.hpp"
@@ -148,7 +150,19 @@ void register_results_commands(CLI::App& app, int& exit_code) {
   plot_cmd->callback([=] {
     const fs::path dir =
         out->empty() ? fs::path("out") / ("plots-" + id->substr(0, 16)) : fs::path(*out);
-    for (const auto& f : export_files(*co, *id, dir, plot_file)) fmt::print("{}\n", f.string());
+    auto files = export_files(*co, *id, dir, plot_file);
+    if (files.empty()) {  // stored without plots (auvloopd --no-plots): make them here
+      export_files(*co, *id, dir, any_file);
+      const fs::path script = dir / results::kDeferredPlotScript;
+      if (!fs::exists(script))
+        throw std::runtime_error("the result has neither plots nor a plot script");
+      if (auto w = results::run_gnuplot(dir, read_file_text(script))) throw std::runtime_error(*w);
+      for (const auto& e : fs::directory_iterator(dir)) {
+        if (plot_file(e.path().filename().string())) files.push_back(e.path());
+      }
+      std::sort(files.begin(), files.end());
+    }
+    for (const auto& f : files) fmt::print("{}\n", f.string());
   });
 }
 

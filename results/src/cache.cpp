@@ -60,10 +60,10 @@ ResultCache::Lookup ResultCache::lookup(const std::string& key) const {
   return out;
 }
 
-std::string ResultCache::store(const RunReport& report) const {
+std::string ResultCache::store(const RunReport& report, WriteOptions options) const {
   const std::string key = content_hash(report.canonical_case);
   fs::create_directories(path_of(key).parent_path());
-  write_run_directory(path_of(key), report);
+  write_run_directory(path_of(key), report, options);
   return key;
 }
 

@@ -234,7 +234,7 @@ WriteOutcome assemble(const fs::path& target, Fill&& fill) {
 
 }  // namespace
 
-WriteOutcome write_run_directory(const fs::path& dir, const RunReport& r) {
+WriteOutcome write_run_directory(const fs::path& dir, const RunReport& r, WriteOptions options) {
   return assemble(dir, [&](const fs::path& scratch) {
     WriteOutcome outcome;
     const std::string series = csv(r.series);
@@ -246,7 +246,13 @@ WriteOutcome write_run_directory(const fs::path& dir, const RunReport& r) {
     std::string script;
     const std::vector<Source> sources{{"timeseries.csv", "", &r.series}};
     for (const auto& f : figures) script += plot_commands(f, sources);
-    outcome.plot_warning = run_gnuplot(scratch, script);
+    if (options.plots) {
+      outcome.plot_warning = run_gnuplot(scratch, script);
+    } else {
+      // Relative paths only: the script runs wherever the directory ends up (results plot).
+      write_text(scratch / kDeferredPlotScript, script);
+      outcome.plot_warning = fmt::format("deferred: {} makes them", kDeferredPlotScript);
+    }
     const auto now = std::chrono::system_clock::now();
     json manifest{{"name", r.name},
                   {"status", r.failure ? "diverged" : "completed"},

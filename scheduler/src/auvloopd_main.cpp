@@ -60,6 +60,10 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
 
+  bool no_plots = false;
+  app.add_flag("--no-plots", no_plots,
+               "Store results without plots (gnuplot costs more than a derivative-plant case); "
+               "`auvloop results plot` makes them on request");
   WorkerArgs w;
   auto* worker = app.add_subcommand("worker", "(internal) run one job; started by the daemon");
   worker->group("");  // hidden from --help
@@ -68,10 +72,12 @@ int main(int argc, char** argv) {
   worker->add_option("--executions", w.executions_log);
   worker->add_option("--progress-fd", w.progress_fd);
   worker->add_option("--parent-pid", w.parent_pid);
+  worker->add_flag("!--no-plots", w.plots);
   CLI11_PARSE(app, argc, argv);
   if (*worker) return run_worker(w);
   o.state_dir = fs::absolute(state_dir);
   o.socket = fs::absolute(socket);
   o.worker_executable = self_executable();
+  o.plots = !no_plots;
   return run_daemon(o);
 }

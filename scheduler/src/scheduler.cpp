@@ -242,15 +242,21 @@ void Scheduler::launch(JobRecord& job) {
   job.state = "running";
   job.started_ms = now_ms();
   ++job.attempts;
+  std::vector<std::string> argv{config_.worker_executable.string(),
+                                "worker",
+                                "--job",
+                                (dir / "job.json").string(),
+                                "--cache",
+                                (config_.state_dir / "cache").string(),
+                                "--executions",
+                                (config_.state_dir / "executions.log").string(),
+                                "--progress-fd",
+                                "3",
+                                "--parent-pid",
+                                std::to_string(getpid())};
+  if (!config_.plots) argv.emplace_back("--no-plots");
   try {
-    backend_->start(
-        {job_id(job.id),
-         {config_.worker_executable.string(), "worker", "--job", (dir / "job.json").string(),
-          "--cache", (config_.state_dir / "cache").string(), "--executions",
-          (config_.state_dir / "executions.log").string(), "--progress-fd", "3", "--parent-pid",
-          std::to_string(getpid())},
-         dir / "worker.log",
-         job.timeout_s});
+    backend_->start({job_id(job.id), argv, dir / "worker.log", job.timeout_s});
     running_[job.id] = job.key;
     store_->update_job(job);
   } catch (const std::exception& e) {

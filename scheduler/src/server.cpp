@@ -118,9 +118,13 @@ int run_daemon(const DaemonOptions& o) {
     fmt::print(stderr, "auvloopd: {}\n", e.what());
     return 4;
   }
-  SchedulerConfig config{o.state_dir,       o.slots > 0 ? o.slots : default_slots(),
-                         o.timeout_s,       o.worker_executable,
-                         o.socket.string(), 0};
+  SchedulerConfig config;
+  config.state_dir = o.state_dir;
+  config.slots = o.slots > 0 ? o.slots : default_slots();
+  config.default_timeout_s = o.timeout_s;
+  config.worker_executable = o.worker_executable;
+  config.plots = o.plots;
+  config.socket = o.socket.string();
   std::string token;
   if (o.tcp_port >= 0) {
     token = new_token();

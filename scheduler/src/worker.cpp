@@ -22,14 +22,15 @@ namespace {
 using nlohmann::json;
 using Clock = std::chrono::steady_clock;
 
-// Test hook (docs/scheduler.md): AUVLOOP_WORKER_FAILPOINT="abort:NAME" aborts, "hang:NAME"
-// sleeps forever, when the case is called NAME. Lets the tests crash and hang real workers.
+// Test hook (docs/scheduler.md): AUVLOOP_WORKER_FAILPOINT="abort:NAME,hang:OTHER" aborts, or
+// sleeps until killed, when the case is called NAME (OTHER). Lets the tests crash and hang real
+// workers.
 void failpoint(const std::string& case_name) {
   const char* fp = std::getenv("AUVLOOP_WORKER_FAILPOINT");
   if (!fp) return;
-  const std::string f(fp);
-  if (f == "abort:" + case_name) std::abort();
-  if (f == "hang:" + case_name) {
+  const std::string list = std::string(",") + fp + ",";
+  if (list.find(",abort:" + case_name + ",") != std::string::npos) std::abort();
+  if (list.find(",hang:" + case_name + ",") != std::string::npos) {
     for (;;) pause();
   }
 }
@@ -121,7 +122,7 @@ int run_worker(const WorkerArgs& args) {
       c.name,         canonical, run.loop.series, results::manoeuvre_metrics(c, run.loop.series),
       run.plant_name, wall,      run.loop.failure};
   try {
-    results::ResultCache(args.cache_root).store(report);
+    results::ResultCache(args.cache_root).store(report, {.plots = args.plots});
   } catch (const std::exception& e) {
     fmt::print(stderr, "worker: the result cannot be stored: {}\n", e.what());
     return 4;

@@ -29,7 +29,7 @@ class ResultCache {
   // Throws std::invalid_argument unless `key` is 64 lower-case hex digits (never a path).
   [[nodiscard]] Lookup lookup(const std::string& key) const;
   // Stores a run under its content hash; returns the key.
-  std::string store(const RunReport& report) const;
+  std::string store(const RunReport& report, WriteOptions options = {}) const;
   // Removes an entry (e.g. a corrupt one before recomputing it).
   void remove(const std::string& key) const;
   [[nodiscard]] std::vector<std::string> keys() const;

@@ -40,7 +40,15 @@ struct WriteOutcome {
   std::optional<std::string> plot_warning;  // plots skipped (gnuplot missing or failed)
 };
 
-WriteOutcome write_run_directory(const std::filesystem::path& dir, const RunReport& report);
+struct WriteOptions {
+  // false: no gnuplot run (it costs more than a derivative-plant case); the script is kept as
+  // kDeferredPlotScript so that the plots can be made later (`auvloop results plot`).
+  bool plots = true;
+};
+inline constexpr const char* kDeferredPlotScript = "plots-deferred.gp";
+
+WriteOutcome write_run_directory(const std::filesystem::path& dir, const RunReport& report,
+                                 WriteOptions options = {});
 
 // Reads a run directory back (for compare): the manifest, metrics and time series.
 struct StoredRun {

@@ -44,6 +44,7 @@ struct SchedulerConfig {
   int slots = 1;                    // jobs running at once
   double default_timeout_s = 24 * 3600;
   std::filesystem::path worker_executable;  // runs `EXE worker ...`
+  bool plots = true;  // false: results are stored without plots (made on request)
   // Shown by status():
   std::string socket;
   int tcp_port = 0;

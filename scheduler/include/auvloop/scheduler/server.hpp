@@ -14,6 +14,7 @@ struct DaemonOptions {
   int tcp_port = -1;  // -1: no TCP; 0: any free port (written to STATE_DIR/tcp-port)
   int slots = 0;      // 0: one per core
   double timeout_s = 24 * 3600;
+  bool plots = true;
   std::filesystem::path worker_executable;
 };
 

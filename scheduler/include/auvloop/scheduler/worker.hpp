@@ -21,6 +21,7 @@ struct WorkerArgs {
   std::filesystem::path executions_log;  // one line appended per finished run (accounting)
   int progress_fd = -1;
   long parent_pid = 0;  // exit at once if the daemon that started us is gone
+  bool plots = true;    // false: deferred (results::WriteOptions)
 };
 
 // The case a job payload describes: {"bundle": SourceBundle, "case": name in the bundle (an
