@@ -19,6 +19,12 @@ endif()
 if(AUVLOOP_WERROR)
   target_compile_options(auvloop_options INTERFACE -Werror)
 endif()
+if(AUVLOOP_FUZZ)
+  # Coverage instrumentation for everything; only the fuzz targets link libFuzzer's main.
+  target_compile_options(auvloop_options INTERFACE -fsanitize=fuzzer-no-link,address,undefined)
+  target_link_options(auvloop_options INTERFACE -fsanitize=address,undefined)
+endif()
+
 if(AUVLOOP_SANITIZE)
   target_compile_options(auvloop_options INTERFACE
     -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all)

@@ -392,7 +392,11 @@ std::optional<std::vector<double>> Table::optional_numbers(std::string_view key,
     used_->emplace(key);
     return std::nullopt;
   }
-  return numbers(key, min_count, max_count, range, unit);
+  // A wrong count was reported by numbers(); the caller gets nothing rather than a short array
+  // (it may index the elements it asked for).
+  auto values = numbers(key, min_count, max_count, range, unit);
+  if (values.size() < min_count || values.size() > max_count) return std::nullopt;
+  return values;
 }
 
 std::vector<double> Table::matrix(std::string_view key, std::size_t rows, std::size_t cols,

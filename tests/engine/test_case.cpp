@@ -86,6 +86,9 @@ TEST(Case, BadFilesNameLineAndReason) {
               HasSubstr("plant: \"cfd2\" is not allowed"));
   EXPECT_THAT(error_of(example("heading-step.toml"), "kp = 1.5", "kpp = 1.5"),
               HasSubstr("controller.kp: missing required key"));
+  // Found by the fuzz target: a short array was indexed past its end.
+  EXPECT_THAT(error_of(example("heading-step.toml"), "rise = [10, 90]", "rise = [10,]"),
+              HasSubstr("indices.rise: has 1 elements, expected an array of 2 numbers"));
   EXPECT_THAT(error_of(example("heading-step.toml"), "[time]\ndt = 0.01", "[time]"),
               HasSubstr("time.dt: missing required key"));
   EXPECT_THAT(error_of(example("heading-step.toml"), "vehicle = \"preset:remus100\"",
