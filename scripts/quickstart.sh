@@ -2,7 +2,9 @@
 # The main job on the embedded defaults: installs what is missing, builds auvloop, then
 #   1. describes the REMUS 100 preset and exports its surface,
 #   2. runs the paper's heading step (0 -> 90 deg, Kp 1.5, Ki 0.6, Kd 1.0) on the derivative plant
-#      (Prestero's model) and on its linearisation, and compares the two.
+#      (Prestero's model) and on its linearisation, and compares the two,
+#   3. tunes the PID gains as the paper does (Kriging, 20 LHS points, EI + MSP) through the
+#      scheduler daemon, which this script starts and stops itself.
 # Everything lands in out/quickstart/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -32,4 +34,14 @@ echo "== Comparison"
 "$auvloop" compare "$out/heading-step-derivative" "$out/heading-step-linearized" \
   --label derivative --label linearized --out "$out/heading-step-comparison"
 echo
-echo "quickstart: results in $out/ (plots: $out/heading-step-comparison/*.png)"
+echo "== The paper's PID tuning through the scheduler daemon (docs/scheduler.md)"
+# A private daemon: its own state directory and socket, so a daemon of yours is not disturbed.
+daemon=(--state-dir "$out/daemon-state" --socket "${TMPDIR:-/tmp}/auvloop-quickstart-$(id -u).sock")
+"$auvloop" daemon start "${daemon[@]}"
+trap '"$auvloop" daemon stop "${daemon[@]}" >/dev/null 2>&1 || true' EXIT
+"$auvloop" optimize examples/pid-optimization.toml --daemon --wait "${daemon[@]}"
+echo
+"$auvloop" results list --limit 5 "${daemon[@]}"
+echo
+echo "quickstart: results in $out/ (plots: $out/heading-step-comparison/*.png; the daemon's"
+echo "cache: $out/daemon-state/cache/)"

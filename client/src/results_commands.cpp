@@ -42,7 +42,6 @@ int list(const ConnectOptions& co, int limit, bool json) {
     fmt::print("{:<16} {:<16} {:<10} {:<11} {}\n", r.key().substr(0, 16), time_text(r.created_ms()),
                r.status(), r.plant(), r.name());
   }
-  fmt::print("(a key prefix is not accepted: use the full key from --json, or a job id)\n");
   return kOk;
 }
 
@@ -114,8 +113,10 @@ void register_results_commands(CLI::App& app, int& exit_code) {
   auto* results = app.add_subcommand("results", "Inspect the daemon's result cache");
   results->require_subcommand(1);
   results->footer(
-      "A result is named by its content key (64 hex digits) or by the id of the job that produced\n"
-      "it (jN). Results are run directories (docs/results.md) under STATE_DIR/cache/.");
+      "A result is named by its content key (64 hex digits, or a unique prefix of 6 or more) or "
+      "by\n"
+      "the id of the job that produced it (jN). Results are run directories (docs/results.md)\n"
+      "under STATE_DIR/cache/.");
   auto co = std::make_shared<ConnectOptions>();
   auto json = std::make_shared<bool>(false);
   auto limit = std::make_shared<int>(50);

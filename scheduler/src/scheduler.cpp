@@ -440,6 +440,19 @@ std::string Scheduler::result_key_of_job(std::int64_t id) {
   return job->key;
 }
 
+std::string Scheduler::result_key_of_prefix(const std::string& prefix) {
+  Lock lock(mutex_);
+  const auto keys = store_->result_keys_with_prefix(prefix, 2);
+  if (keys.empty())
+    throw RequestError(Kind::not_found, fmt::format("no cached result {}...", prefix));
+  if (keys.size() > 1) {
+    throw RequestError(
+        Kind::invalid_argument,
+        fmt::format("{} is the start of several result keys: give more digits", prefix));
+  }
+  return keys.front();
+}
+
 fs::path Scheduler::result_dir(const std::string& key) {
   return cache_.path_of(key);
 }

@@ -26,10 +26,15 @@ grpc::StatusCode code_of(Kind k) {
   return grpc::StatusCode::UNKNOWN;
 }
 
+bool is_hex(const std::string& s) {
+  return std::all_of(s.begin(), s.end(),
+                     [](char c) { return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'); });
+}
 bool is_key(const std::string& s) {
-  return s.size() == 64 && std::all_of(s.begin(), s.end(), [](char c) {
-           return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f');
-         });
+  return s.size() == 64 && is_hex(s);
+}
+bool is_key_prefix(const std::string& s) {
+  return s.size() >= 6 && s.size() < 64 && is_hex(s);
 }
 
 bool same(const std::string& a, const std::string& b) {  // constant time in the content
@@ -181,10 +186,11 @@ grpc::Status SchedulerService::ListResults(grpc::ServerContext* ctx,
 
 std::string SchedulerService::result_key(const std::string& id) {
   if (is_key(id)) return id;
+  if (is_key_prefix(id)) return scheduler_.result_key_of_prefix(id);
   if (id.starts_with("j")) return scheduler_.result_key_of_job(parse_id(id, 'j'));
   throw RequestError(Kind::invalid_argument,
                      fmt::format("'{}' is neither a job id (j<number>) nor a result key (64 hex "
-                                 "digits)",
+                                 "digits, or at least the first 6)",
                                  id.substr(0, 80)));
 }
 

@@ -302,6 +302,18 @@ std::optional<ResultRecord> StateStore::result(const std::string& key) const {
   return read_result(q);
 }
 
+std::vector<std::string> StateStore::result_keys_with_prefix(const std::string& prefix,
+                                                             int limit) const {
+  // Keys are hex, so a range query needs no escaping: prefix <= key < prefix + "g".
+  SQLite::Statement q(*db_, "SELECT key FROM results WHERE key >= ? AND key < ? LIMIT ?");
+  q.bind(1, prefix);
+  q.bind(2, prefix + "g");
+  q.bind(3, limit);
+  std::vector<std::string> out;
+  while (q.executeStep()) out.push_back(q.getColumn(0).getString());
+  return out;
+}
+
 void StateStore::forget_result(const std::string& key) {
   SQLite::Statement q(*db_, "DELETE FROM results WHERE key = ?");
   q.bind(1, key);

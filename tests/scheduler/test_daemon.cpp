@@ -66,6 +66,13 @@ TEST(Daemon, SubmitWatchResultThenResubmitIsACacheHit) {
   EXPECT_EQ(result.status(), "completed");
   EXPECT_NE(result.metrics_json().find("itae_deg_s2"), std::string::npos);
 
+  v1::IdRequest by_prefix;  // a unique prefix of the key names the result too
+  by_prefix.set_id(job.key().substr(0, 8));
+  v1::Result same;
+  auto c4 = Daemon::ctx();
+  ASSERT_TRUE(d.stub().GetResult(c4.get(), by_prefix, &same).ok());
+  EXPECT_EQ(same.key(), job.key());
+
   const auto again = d.submit(heading_case("step"));
   EXPECT_EQ(again.state(), v1::SUCCEEDED);  // at once, in the reply
   EXPECT_TRUE(again.cache_hit());

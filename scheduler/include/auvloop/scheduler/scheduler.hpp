@@ -81,6 +81,8 @@ class Scheduler {
   // `key`: 64 hex digits. Throws RequestError (not_found) when not cached or corrupt.
   v1::Result result(const std::string& key, bool with_manifest);
   std::string result_key_of_job(std::int64_t id);
+  // The full key of a unique prefix (at least 6 hex digits) of a cached result's key.
+  std::string result_key_of_prefix(const std::string& prefix);
   std::filesystem::path result_dir(const std::string& key);
 
   v1::DaemonStatus status();

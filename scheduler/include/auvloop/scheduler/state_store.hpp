@@ -108,6 +108,9 @@ class StateStore {
   [[nodiscard]] std::vector<ResultRecord> results(int limit) const;
   [[nodiscard]] std::optional<ResultRecord> result(const std::string& key) const;
   void forget_result(const std::string& key);
+  // Up to `limit` result keys starting with `prefix` (lower-case hex only).
+  [[nodiscard]] std::vector<std::string> result_keys_with_prefix(const std::string& prefix,
+                                                                 int limit) const;
 
  private:
   std::unique_ptr<SQLite::Database> db_;
