@@ -1,0 +1,177 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "auvloop/engine/fv/linear_solver.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include <Eigen/CholmodSupport>
+#include <Eigen/IterativeLinearSolvers>
+#include <Eigen/SparseCore>
+
+namespace auvloop::engine::fv {
+
+namespace {
+using Sparse = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
+using Vec = Eigen::VectorXd;
+}  // namespace
+
+const char* to_string(SymmetricMethod m) {
+  switch (m) {
+    case SymmetricMethod::cholmod:
+      return "cholmod";
+    case SymmetricMethod::cg_incomplete_cholesky:
+      return "cg-ic";
+    case SymmetricMethod::cg_jacobi:
+      return "cg-jacobi";
+  }
+  return "?";
+}
+
+SymmetricMethod symmetric_method_from_string(const std::string& s) {
+  for (auto m : {SymmetricMethod::cholmod, SymmetricMethod::cg_incomplete_cholesky,
+                 SymmetricMethod::cg_jacobi})
+    if (s == to_string(m)) return m;
+  throw std::invalid_argument("unknown pressure solver '" + s + "' (cholmod, cg-ic, cg-jacobi)");
+}
+
+struct LinearSolver::Impl {
+  const Mesh& mesh;
+  double tolerance;
+  Sparse A;
+  std::vector<int> diag_pos, upper_pos, lower_pos;  // positions in A.valuePtr()
+  Eigen::CholmodSupernodalLLT<Sparse, Eigen::Lower> cholmod;
+  bool analysed = false;
+  std::vector<double> factorised_values;  // the coefficients of the current factorisation
+
+  Impl(const Mesh& m, double tol) : mesh(m), tolerance(tol) {
+    std::vector<Eigen::Triplet<double, int>> t;
+    for (int c = 0; c < mesh.cells(); ++c) t.emplace_back(c, c, 1.0);
+    for (int f = 0; f < mesh.internal_faces(); ++f) {
+      t.emplace_back(mesh.owner(f), mesh.neighbour(f), 1.0);
+      t.emplace_back(mesh.neighbour(f), mesh.owner(f), 1.0);
+    }
+    A.resize(mesh.cells(), mesh.cells());
+    A.setFromTriplets(t.begin(), t.end());
+    A.makeCompressed();
+    auto position = [&](int row, int col) {
+      const int* inner = A.innerIndexPtr();
+      for (int k = A.outerIndexPtr()[col]; k < A.outerIndexPtr()[col + 1]; ++k)
+        if (inner[k] == row) return k;
+      throw std::logic_error("fv::LinearSolver: entry missing from the pattern");
+    };
+    for (int c = 0; c < mesh.cells(); ++c) diag_pos.push_back(position(c, c));
+    for (int f = 0; f < mesh.internal_faces(); ++f) {
+      upper_pos.push_back(position(mesh.owner(f), mesh.neighbour(f)));
+      lower_pos.push_back(position(mesh.neighbour(f), mesh.owner(f)));
+    }
+  }
+
+  void load(const Matrix& m) {
+    double* v = A.valuePtr();
+    for (std::size_t c = 0; c < diag_pos.size(); ++c) v[diag_pos[c]] = m.diag[c];
+    for (std::size_t f = 0; f < upper_pos.size(); ++f) {
+      v[upper_pos[f]] = m.upper[f];
+      v[lower_pos[f]] = m.lower[f];
+    }
+  }
+};
+
+LinearSolver::LinearSolver(const Mesh& mesh, double tolerance)
+    : impl_(std::make_unique<Impl>(mesh, tolerance)) {}
+LinearSolver::~LinearSolver() = default;
+
+namespace {
+template <class Solver>
+SolveStats iterate(Solver& solver, const Sparse& A, const std::vector<double>& source,
+                   std::span<double> x, double tolerance) {
+  solver.setTolerance(tolerance);
+  solver.setMaxIterations(5000);
+  solver.compute(A);
+  Eigen::Map<const Vec> b(source.data(), static_cast<Eigen::Index>(source.size()));
+  Eigen::Map<Vec> xv(x.data(), static_cast<Eigen::Index>(x.size()));
+  Vec guess = xv;
+  xv = solver.solveWithGuess(b, guess);
+  SolveStats s;
+  s.iterations = static_cast<int>(solver.iterations());
+  s.final_residual = solver.error();
+  if (solver.info() != Eigen::Success && !(solver.error() < 1e3 * tolerance))
+    throw std::runtime_error("linear solver did not converge: relative residual " +
+                             std::to_string(solver.error()));
+  return s;
+}
+}  // namespace
+
+SolveStats LinearSolver::solve_symmetric(const Matrix& m, std::span<double> x,
+                                         SymmetricMethod method) {
+  auto& I = *impl_;
+  SolveStats stats;
+  stats.initial_residual = normalised_residual(I.mesh, m, x);
+  // Eigen's CG and CHOLMOD want a positive definite matrix: the Laplacian is negative definite,
+  // so solve (-A) x = -b.
+  Matrix neg = -m;
+  I.load(neg);
+  if (method == SymmetricMethod::cholmod) {
+    const std::vector<double> values(I.A.valuePtr(), I.A.valuePtr() + I.A.nonZeros());
+    if (!I.analysed) {
+      I.cholmod.analyzePattern(I.A);
+      I.analysed = true;
+    }
+    if (values != I.factorised_values) {
+      I.cholmod.factorize(I.A);
+      if (I.cholmod.info() != Eigen::Success)
+        throw std::runtime_error("CHOLMOD: the pressure matrix is not positive definite");
+      I.factorised_values = values;
+      stats.factorised = true;
+    }
+    Eigen::Map<const Vec> b(neg.source.data(), static_cast<Eigen::Index>(neg.source.size()));
+    Eigen::Map<Vec>(x.data(), static_cast<Eigen::Index>(x.size())) = I.cholmod.solve(b);
+  } else if (method == SymmetricMethod::cg_incomplete_cholesky) {
+    Eigen::ConjugateGradient<Sparse, Eigen::Lower | Eigen::Upper,
+                             Eigen::IncompleteCholesky<double, Eigen::Lower>>
+        cg;
+    const auto s = iterate(cg, I.A, neg.source, x, I.tolerance);
+    stats.iterations = s.iterations;
+  } else {
+    Eigen::ConjugateGradient<Sparse, Eigen::Lower | Eigen::Upper> cg;
+    const auto s = iterate(cg, I.A, neg.source, x, I.tolerance);
+    stats.iterations = s.iterations;
+  }
+  stats.final_residual = normalised_residual(I.mesh, m, x);
+  return stats;
+}
+
+SolveStats LinearSolver::solve_asymmetric(const Matrix& m, std::span<double> x,
+                                          AsymmetricMethod method) {
+  auto& I = *impl_;
+  SolveStats stats;
+  stats.initial_residual = normalised_residual(I.mesh, m, x);
+  I.load(m);
+  if (method == AsymmetricMethod::bicgstab_ilut) {
+    Eigen::BiCGSTAB<Sparse, Eigen::IncompleteLUT<double>> s;
+    stats.iterations = iterate(s, I.A, m.source, x, I.tolerance).iterations;
+  } else {
+    Eigen::BiCGSTAB<Sparse> s;
+    stats.iterations = iterate(s, I.A, m.source, x, I.tolerance).iterations;
+  }
+  stats.final_residual = normalised_residual(I.mesh, m, x);
+  return stats;
+}
+
+double normalised_residual(const Mesh& mesh, const Matrix& m, std::span<const double> x) {
+  const auto n = static_cast<std::size_t>(mesh.cells());
+  double mean = 0;
+  for (std::size_t i = 0; i < n; ++i) mean += x[i];
+  mean /= static_cast<double>(n);
+  std::vector<double> Ax(n), Axbar(n);
+  const std::vector<double> xbar(n, mean);
+  m.multiply(mesh, x, Ax);
+  m.multiply(mesh, xbar, Axbar);
+  double r = 0, norm = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    r += std::abs(m.source[i] - Ax[i]);
+    norm += std::abs(Ax[i] - Axbar[i]) + std::abs(m.source[i] - Axbar[i]);
+  }
+  return r / (norm + 1e-300);
+}
+
+}  // namespace auvloop::engine::fv
