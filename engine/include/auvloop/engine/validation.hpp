@@ -46,4 +46,27 @@ struct MmsError {
 };
 MmsError mms_convection_diffusion(int n);
 
+// Lid-driven cavity on n x n uniform cells: the largest deviations from Ghia et al. of u on the
+// vertical and v on the horizontal centreline, in units of the lid speed.
+struct CavityResult {
+  int n = 0;
+  double reynolds = 0;
+  int steps = 0;               // pseudo-time steps to the steady state
+  double final_change = 0;     // max |du/dt| at the last step (1/s)
+  double max_deviation_u = 0;  // max over Ghia's points
+  double max_deviation_v = 0;
+  double seconds = 0;
+};
+CavityResult lid_driven_cavity(int n, double reynolds);
+double cavity_pseudo_dt(int n, double reynolds);
+
+// 2D Taylor-Green vortex on n x n cells of [0, pi]^2 to end_time in `steps` BDF2 steps.
+struct TaylorGreenRun {
+  std::vector<double> u, v, volumes;  // per cell at end_time
+  double error_vs_exact = 0;          // volume-weighted L2 of the velocity error (m/s)
+  int max_outer = 0;                  // outer iterations the slowest step needed
+};
+TaylorGreenRun taylor_green(int n, int steps, double end_time, double nu);
+double l2_difference(const TaylorGreenRun& a, const TaylorGreenRun& b);
+
 }  // namespace auvloop::engine::validation
