@@ -42,6 +42,20 @@ Mesh::Mesh(const mesher::Grid& grid)
       patch_of_[static_cast<std::size_t>(patch.start + i - internal_faces())] = static_cast<int>(p);
   }
   for (double v : geo_.cell_volume) total_volume_ += v;
+  cell_face_offsets_.assign(static_cast<std::size_t>(cells()) + 1, 0);
+  for (int f = 0; f < faces(); ++f) {
+    ++cell_face_offsets_[static_cast<std::size_t>(owner(f)) + 1];
+    if (f < internal_faces()) ++cell_face_offsets_[static_cast<std::size_t>(neighbour(f)) + 1];
+  }
+  for (std::size_t c = 0; c < static_cast<std::size_t>(cells()); ++c)
+    cell_face_offsets_[c + 1] += cell_face_offsets_[c];
+  cell_face_list_.resize(static_cast<std::size_t>(cell_face_offsets_.back()));
+  std::vector<int> fill(cell_face_offsets_.begin(), cell_face_offsets_.end() - 1);
+  for (int f = 0; f < faces(); ++f) {
+    cell_face_list_[static_cast<std::size_t>(fill[static_cast<std::size_t>(owner(f))]++)] = f;
+    if (f < internal_faces())
+      cell_face_list_[static_cast<std::size_t>(fill[static_cast<std::size_t>(neighbour(f))]++)] = f;
+  }
   gradient_ = std::make_unique<LeastSquaresGradient>(grid_, geo_);
 }
 

@@ -50,6 +50,10 @@ Pimple::Pimple(const Mesh& mesh, PimpleSettings settings)
     for (int i = 0; i < 3; ++i)
       if (std::abs(n[i]) > 0.999) active_[static_cast<std::size_t>(i)] = false;
   }
+  if (!settings_.pressure_solver) {
+    const bool two_d = !(active_[0] && active_[1] && active_[2]);
+    settings_.pressure_solver = two_d ? SymmetricMethod::cholmod_pcg : SymmetricMethod::cg_jacobi;
+  }
 }
 
 void Pimple::slip(const std::string& patch) {

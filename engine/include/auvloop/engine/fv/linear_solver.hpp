@@ -14,7 +14,9 @@
 namespace auvloop::engine::fv {
 
 enum class SymmetricMethod {
-  cholmod,                 // sparse Cholesky (SuiteSparse CHOLMOD, supernodal), exact
+  cholmod,      // sparse Cholesky (SuiteSparse CHOLMOD, supernodal), exact
+  cholmod_pcg,  // CG preconditioned by the Cholesky factor of an earlier matrix, refactorised
+                // only when the iterations exceed a limit
   cg_incomplete_cholesky,  // Eigen conjugate gradients, IC(0)-like preconditioner
   cg_jacobi,               // Eigen conjugate gradients, diagonal preconditioner
 };

@@ -52,6 +52,13 @@ class Mesh {
   // Patch index of boundary face b (b = f - internal_faces()).
   int patch_of(int b) const { return patch_of_[static_cast<std::size_t>(b)]; }
   double total_volume() const { return total_volume_; }
+  // The faces of cell c in a fixed order (ascending face index): per-cell gathers in this order
+  // make face sums independent of the number of threads.
+  std::span<const int> cell_faces(int c) const {
+    const auto b = static_cast<std::size_t>(cell_face_offsets_[static_cast<std::size_t>(c)]);
+    const auto e = static_cast<std::size_t>(cell_face_offsets_[static_cast<std::size_t>(c) + 1]);
+    return std::span<const int>(cell_face_list_).subspan(b, e - b);
+  }
   // Least-squares cell gradient of cell values with their boundary-face values.
   void gradient(std::span<const double> cells, std::span<const double> boundary,
                 std::span<Eigen::Vector3d> out) const {
@@ -64,6 +71,7 @@ class Mesh {
   std::vector<double> weight_, alpha_;
   std::vector<Eigen::Vector3d> d_, k_;
   std::vector<int> patch_of_;
+  std::vector<int> cell_face_offsets_, cell_face_list_;
   double total_volume_ = 0;
   std::unique_ptr<LeastSquaresGradient> gradient_;
 };
