@@ -48,41 +48,6 @@ struct LinearSolver::Impl {
   std::vector<double> factorised_values;  // the coefficients of the current factorisation
   int last_pcg_iterations = 0;
 
-  void factorise(SolveStats& stats) {
-    if (!analysed) {
-      cholmod.analyzePattern(A);
-      analysed = true;
-    }
-    cholmod.factorize(A);
-    if (cholmod.info() != Eigen::Success)
-      throw std::runtime_error("CHOLMOD: the pressure matrix is not positive definite");
-    factorised_values.assign(A.valuePtr(), A.valuePtr() + A.nonZeros());
-    stats.factorised = true;
-  }
-
-  // Conjugate gradients on A x = b preconditioned by the current factorisation (of a nearby
-  // matrix). Serial, so the result does not depend on the number of threads.
-  int pcg(const Vec& b, Eigen::Map<Vec>& x) {
-    Vec r = b - A.selfadjointView<Eigen::Lower>() * x;
-    const double bnorm = std::max(b.norm(), 1e-300);
-    if (r.norm() <= tolerance * bnorm) return 0;
-    Vec z = cholmod.solve(r);
-    Vec p = z;
-    double rz = r.dot(z);
-    for (int it = 1; it <= 200; ++it) {
-      const Vec Ap = A.selfadjointView<Eigen::Lower>() * p;
-      const double alpha = rz / p.dot(Ap);
-      x += alpha * p;
-      r -= alpha * Ap;
-      if (r.norm() <= tolerance * bnorm) return it;
-      z = cholmod.solve(r);
-      const double rz_new = r.dot(z);
-      p = z + (rz_new / rz) * p;
-      rz = rz_new;
-    }
-    throw std::runtime_error("preconditioned CG did not converge in 200 iterations");
-  }
-
   Impl(const Mesh& m, double tol) : mesh(m), tolerance(tol) {
     std::vector<Eigen::Triplet<double, int>> t;
     for (int c = 0; c < mesh.cells(); ++c) t.emplace_back(c, c, 1.0);
@@ -104,6 +69,43 @@ struct LinearSolver::Impl {
       upper_pos.push_back(position(mesh.owner(f), mesh.neighbour(f)));
       lower_pos.push_back(position(mesh.neighbour(f), mesh.owner(f)));
     }
+  }
+
+  void factorise(SolveStats& stats) {
+    if (!analysed) {
+      cholmod.analyzePattern(A);
+      analysed = true;
+    }
+    cholmod.factorize(A);
+    if (cholmod.info() != Eigen::Success)
+      throw std::runtime_error("CHOLMOD: the pressure matrix is not positive definite");
+    factorised_values.assign(A.valuePtr(), A.valuePtr() + A.nonZeros());
+    stats.factorised = true;
+  }
+
+  // Conjugate gradients on A x = b preconditioned by the current factorisation (of a nearby
+  // matrix). Serial, so the result does not depend on the number of threads. Returns the
+  // iterations, or -1 when the tolerance is not reached within `max_iterations` (a stale factor,
+  // or a tolerance below round-off).
+  int pcg(const Vec& b, Eigen::Map<Vec>& x, int max_iterations) {
+    Vec r = b - A.selfadjointView<Eigen::Lower>() * x;
+    const double bnorm = std::max(b.norm(), 1e-300);
+    if (r.norm() <= tolerance * bnorm) return 0;
+    Vec z = cholmod.solve(r);
+    Vec p = z;
+    double rz = r.dot(z);
+    for (int it = 1; it <= max_iterations; ++it) {
+      const Vec Ap = A.selfadjointView<Eigen::Lower>() * p;
+      const double alpha = rz / p.dot(Ap);
+      x += alpha * p;
+      r -= alpha * Ap;
+      if (r.norm() <= tolerance * bnorm) return it;
+      z = cholmod.solve(r);
+      const double rz_new = r.dot(z);
+      p = z + (rz_new / rz) * p;
+      rz = rz_new;
+    }
+    return -1;
   }
 
   void load(const Matrix& m) {
@@ -158,11 +160,21 @@ SolveStats LinearSolver::solve_symmetric(const Matrix& m, std::span<double> x,
     Eigen::Map<Vec>(x.data(), static_cast<Eigen::Index>(x.size())) = I.cholmod.solve(b);
   } else if (method == SymmetricMethod::cholmod_pcg) {
     // Refactorise when the old factor has become a poor preconditioner (more than 10
-    // iterations last time): a fresh factor solves in one iteration.
-    if (I.factorised_values.empty() || I.last_pcg_iterations > 10) I.factorise(stats);
+    // iterations last time, or no convergence in 30); with a fresh factor the solve is direct.
     Eigen::Map<const Vec> b(neg.source.data(), static_cast<Eigen::Index>(neg.source.size()));
     Eigen::Map<Vec> xv(x.data(), static_cast<Eigen::Index>(x.size()));
-    stats.iterations = I.last_pcg_iterations = I.pcg(b, xv);
+    int iterations = -1;
+    if (!I.factorised_values.empty() && I.last_pcg_iterations <= 10) {
+      const Vec x0 = xv;
+      iterations = I.pcg(b, xv, 30);
+      if (iterations < 0) xv = x0;
+    }
+    if (iterations < 0) {
+      I.factorise(stats);
+      xv = I.cholmod.solve(b);
+      iterations = 0;
+    }
+    stats.iterations = I.last_pcg_iterations = iterations;
   } else if (method == SymmetricMethod::cg_incomplete_cholesky) {
     Eigen::ConjugateGradient<Sparse, Eigen::Lower | Eigen::Upper,
                              Eigen::IncompleteCholesky<double, Eigen::Lower>>
