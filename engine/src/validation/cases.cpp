@@ -51,12 +51,13 @@ Result run_mms(bool quick) {
 // nu = 1 m^2/s to t = 1 s (Re = pi): the dt-dependent part of the error is then BDF2's. With
 // little viscosity (nu = 0.1) the Rhie-Chow pressure smoothing, whose coefficient D = V / A
 // shrinks with dt, leaves an O(h^2 dt) spatial part that masks the temporal order on coarse grids
-// (docs/cfd.md, "Known limitations").
+// (docs/cfd.md, "Known limitations"). The full case starts at 20 steps: the unrelaxed outer
+// loop diverged at 64^2 with dt = 0.1 s (diffusion number nu dt / h^2 = 41).
 Result run_taylor_green(bool quick) {
   Result res{"taylor-green", {}, {}};
   const int n = quick ? 32 : 64;
   const std::vector<int> steps =
-      quick ? std::vector<int>{10, 20, 40} : std::vector<int>{10, 20, 40, 80, 160};
+      quick ? std::vector<int>{10, 20, 40} : std::vector<int>{20, 40, 80, 160};
   std::vector<TaylorGreenRun> runs;
   for (int k : steps) {
     runs.push_back(taylor_green(n, k, 1.0, 1.0));
