@@ -9,6 +9,8 @@
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCore>
 
+#include "parallel_cg.hpp"
+
 namespace auvloop::engine::fv {
 
 namespace {
@@ -182,9 +184,9 @@ SolveStats LinearSolver::solve_symmetric(const Matrix& m, std::span<double> x,
     const auto s = iterate(cg, I.A, neg.source, x, I.tolerance);
     stats.iterations = s.iterations;
   } else {
-    Eigen::ConjugateGradient<Sparse, Eigen::Lower | Eigen::Upper> cg;
-    const auto s = iterate(cg, I.A, neg.source, x, I.tolerance);
-    stats.iterations = s.iterations;
+    const Vec b = Eigen::Map<const Vec>(neg.source.data(), static_cast<Eigen::Index>(x.size()));
+    Eigen::Map<Vec> xv(x.data(), static_cast<Eigen::Index>(x.size()));
+    stats.iterations = parallel_jacobi_cg(I.A, b, xv, I.tolerance, 20000);
   }
   stats.final_residual = normalised_residual(I.mesh, m, x);
   return stats;
