@@ -69,4 +69,16 @@ struct TaylorGreenRun {
 TaylorGreenRun taylor_green(int n, int steps, double end_time, double nu);
 double l2_difference(const TaylorGreenRun& a, const TaylorGreenRun& b);
 
+// Schaefer-Turek 2D-1 (steady, Re = 20) on the cylinder O-grid with `cells_per_side` cells per
+// side of the O-grid's rectangle (as many radially, twice as many downstream), pseudo-time step
+// dt (0.004 s ran stably up to 32 cells per side). Experimental: not yet within the reference
+// intervals, so not among cases() (docs/cfd.md, "Schaefer-Turek: open").
+struct CylinderResult {
+  int cells = 0, steps = 0;
+  double final_change = 0;
+  double cd = 0, cl = 0, dp = 0, la = 0;  // drag and lift coefficients, p difference, L_a (m)
+  double seconds = 0;
+};
+CylinderResult schaefer_turek_2d1(int cells_per_side, double dt);
+
 }  // namespace auvloop::engine::validation
