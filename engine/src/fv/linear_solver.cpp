@@ -9,6 +9,7 @@
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCore>
 
+#include "dic_pcg.hpp"
 #include "parallel_cg.hpp"
 
 namespace auvloop::engine::fv {
@@ -26,6 +27,8 @@ const char* to_string(SymmetricMethod m) {
       return "cholmod-pcg";
     case SymmetricMethod::cg_incomplete_cholesky:
       return "cg-ic";
+    case SymmetricMethod::cg_dic:
+      return "cg-dic";
     case SymmetricMethod::cg_jacobi:
       return "cg-jacobi";
   }
@@ -34,10 +37,11 @@ const char* to_string(SymmetricMethod m) {
 
 SymmetricMethod symmetric_method_from_string(const std::string& s) {
   for (auto m : {SymmetricMethod::cholmod, SymmetricMethod::cholmod_pcg,
-                 SymmetricMethod::cg_incomplete_cholesky, SymmetricMethod::cg_jacobi})
+                 SymmetricMethod::cg_incomplete_cholesky, SymmetricMethod::cg_dic,
+                 SymmetricMethod::cg_jacobi})
     if (s == to_string(m)) return m;
   throw std::invalid_argument("unknown pressure solver '" + s +
-                              "' (cholmod, cholmod-pcg, cg-ic, cg-jacobi)");
+                              "' (cholmod, cholmod-pcg, cg-ic, cg-dic, cg-jacobi)");
 }
 
 struct LinearSolver::Impl {
@@ -183,6 +187,8 @@ SolveStats LinearSolver::solve_symmetric(const Matrix& m, std::span<double> x,
         cg;
     const auto s = iterate(cg, I.A, neg.source, x, I.tolerance);
     stats.iterations = s.iterations;
+  } else if (method == SymmetricMethod::cg_dic) {
+    stats.iterations = dic_pcg(I.mesh, neg, x, I.tolerance, 20000);
   } else {
     const Vec b = Eigen::Map<const Vec>(neg.source.data(), static_cast<Eigen::Index>(x.size()));
     Eigen::Map<Vec> xv(x.data(), static_cast<Eigen::Index>(x.size()));

@@ -18,7 +18,8 @@ enum class SymmetricMethod {
   cholmod_pcg,  // CG preconditioned by the Cholesky factor of an earlier matrix, refactorised
                 // only when the iterations exceed a limit
   cg_incomplete_cholesky,  // Eigen conjugate gradients, IC(0)-like preconditioner
-  cg_jacobi,               // Eigen conjugate gradients, diagonal preconditioner
+  cg_dic,     // conjugate gradients, diagonal incomplete Cholesky (OpenFOAM's DIC), serial sweeps
+  cg_jacobi,  // conjugate gradients, diagonal preconditioner, parallel (oneTBB)
 };
 enum class AsymmetricMethod {
   bicgstab_jacobi,  // Eigen BiCGSTAB with a diagonal preconditioner
