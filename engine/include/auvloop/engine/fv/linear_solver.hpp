@@ -17,7 +17,7 @@ enum class SymmetricMethod {
   cholmod,      // sparse Cholesky (SuiteSparse CHOLMOD, supernodal), exact
   cholmod_pcg,  // CG preconditioned by the Cholesky factor of an earlier matrix, refactorised
                 // only when the iterations exceed a limit
-  cg_incomplete_cholesky,  // Eigen conjugate gradients, IC(0)-like preconditioner
+  cg_incomplete_cholesky,  // Eigen CG with its IncompleteCholesky (threshold, with fill)
   cg_dic,     // conjugate gradients, diagonal incomplete Cholesky (OpenFOAM's DIC), serial sweeps
   cg_jacobi,  // conjugate gradients, diagonal preconditioner, parallel (oneTBB)
 };
