@@ -29,5 +29,6 @@ void register_results_commands(CLI::App& app, int& exit_code);
 struct ConnectOptions;
 // `auvloop optimize OPT.toml --daemon`: submits to the daemon (job_commands.cpp).
 int optimize_on_daemon(const ConnectOptions& co, const std::string& file, bool wait, bool json);
+void register_validate_command(CLI::App& app, int& exit_code);
 
 }  // namespace auvloop::cli

@@ -37,6 +37,7 @@ int main(int argc, char** argv) {
   cli::register_daemon_commands(app, exit_code);
   cli::register_job_commands(app, exit_code);
   cli::register_results_commands(app, exit_code);
+  cli::register_validate_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

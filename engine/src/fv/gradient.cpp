@@ -5,6 +5,8 @@
 
 #include <Eigen/LU>
 
+#include "parallel.hpp"
+
 namespace auvloop::engine::fv {
 
 LeastSquaresGradient::LeastSquaresGradient(const mesher::Grid& grid,
@@ -28,6 +30,22 @@ LeastSquaresGradient::LeastSquaresGradient(const mesher::Grid& grid,
       add(P, geometry.face_centre[fs] - c[static_cast<std::size_t>(P)]);
     }
   }
+  offsets_.assign(static_cast<std::size_t>(grid.cells) + 1, 0);
+  for (int f = 0; f < grid.faces(); ++f) {
+    ++offsets_[static_cast<std::size_t>(grid.owner[static_cast<std::size_t>(f)]) + 1];
+    if (f < grid.internal_faces())
+      ++offsets_[static_cast<std::size_t>(grid.neighbour[static_cast<std::size_t>(f)]) + 1];
+  }
+  for (std::size_t i = 0; i < static_cast<std::size_t>(grid.cells); ++i)
+    offsets_[i + 1] += offsets_[i];
+  faces_.resize(static_cast<std::size_t>(offsets_.back()));
+  std::vector<int> fill(offsets_.begin(), offsets_.end() - 1);
+  for (int f = 0; f < grid.faces(); ++f) {
+    const auto fs = static_cast<std::size_t>(f);
+    faces_[static_cast<std::size_t>(fill[static_cast<std::size_t>(grid.owner[fs])]++)] = f;
+    if (f < grid.internal_faces())
+      faces_[static_cast<std::size_t>(fill[static_cast<std::size_t>(grid.neighbour[fs])]++)] = f;
+  }
   for (std::size_t i = 0; i < inverse_.size(); ++i) {
     Eigen::FullPivLU<Eigen::Matrix3d> lu(inverse_[i]);
     if (!lu.isInvertible()) {
@@ -41,23 +59,27 @@ LeastSquaresGradient::LeastSquaresGradient(const mesher::Grid& grid,
 void LeastSquaresGradient::compute(std::span<const double> phi, std::span<const double> boundary,
                                    std::span<Eigen::Vector3d> gradient) const {
   const auto& c = geometry_.cell_centre;
-  std::vector<Eigen::Vector3d> rhs(static_cast<std::size_t>(grid_.cells), Eigen::Vector3d::Zero());
-  for (int f = 0; f < grid_.faces(); ++f) {
-    const auto fs = static_cast<std::size_t>(f);
-    const auto P = static_cast<std::size_t>(grid_.owner[fs]);
-    if (f < grid_.internal_faces()) {
-      const auto N = static_cast<std::size_t>(grid_.neighbour[fs]);
-      const Eigen::Vector3d d = c[N] - c[P];
-      const Eigen::Vector3d contribution = d * (phi[N] - phi[P]) / d.squaredNorm();
-      rhs[P] += contribution;
-      rhs[N] += contribution;  // (-d)(phi_P - phi_N) is the same vector
-    } else {
-      const Eigen::Vector3d d = geometry_.face_centre[fs] - c[P];
-      rhs[P] += d * (boundary[fs - static_cast<std::size_t>(grid_.internal_faces())] - phi[P]) /
-                d.squaredNorm();
+  const int internal = grid_.internal_faces();
+  parallel_for(grid_.cells, [&](int cell) {
+    const auto P = static_cast<std::size_t>(cell);
+    Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
+    for (int k = offsets_[P]; k < offsets_[P + 1]; ++k) {
+      const int f = faces_[static_cast<std::size_t>(k)];
+      const auto fs = static_cast<std::size_t>(f);
+      Eigen::Vector3d d;
+      double other;
+      if (f < internal) {
+        const int n = grid_.owner[fs] == cell ? grid_.neighbour[fs] : grid_.owner[fs];
+        d = c[static_cast<std::size_t>(n)] - c[P];
+        other = phi[static_cast<std::size_t>(n)];
+      } else {
+        d = geometry_.face_centre[fs] - c[P];
+        other = boundary[fs - static_cast<std::size_t>(internal)];
+      }
+      rhs += d * (other - phi[P]) / d.squaredNorm();
     }
-  }
-  for (std::size_t i = 0; i < rhs.size(); ++i) gradient[i] = inverse_[i] * rhs[i];
+    gradient[P] = inverse_[P] * rhs;
+  });
 }
 
 }  // namespace auvloop::engine::fv

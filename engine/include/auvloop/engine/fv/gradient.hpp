@@ -5,7 +5,8 @@
 // face neighbours k (d_k = x_k - x_P, w_k = 1 / |d_k|^2), boundary faces contributing their face
 // value at their face centre. The 3 x 3 normal matrices depend on the grid only and are inverted
 // once. Exact for linear fields on any grid, which Green-Gauss with linear face interpolation is
-// not on skewed cells.
+// not on skewed cells. compute() runs in parallel over cells (oneTBB) with thread-count
+// independent results.
 #pragma once
 
 #include <span>
@@ -29,6 +30,9 @@ class LeastSquaresGradient {
   const mesher::Grid& grid_;
   const mesher::GridGeometry& geometry_;
   std::vector<Eigen::Matrix3d> inverse_;  // per cell
+  // Faces of each cell (CSR, ascending face index): the per-cell gather in compute() sums in
+  // this fixed order, in parallel, so the result does not depend on the number of threads.
+  std::vector<int> offsets_, faces_;
 };
 
 }  // namespace auvloop::engine::fv

@@ -1,0 +1,41 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// A finite-volume equation on a mesh in LDU form (OpenFOAM's fvMatrix): one diagonal coefficient
+// per cell, one upper (row owner, column neighbour) and one lower (row neighbour, column owner)
+// coefficient per internal face, and a source. The equation is A phi = source; each operator adds
+// the volume integral of its term to the left-hand side, implicit parts into A and explicit parts
+// as -source, so that an equation reads like its PDE:
+//     Matrix eq = ddt(...) + div(...) - laplacian(...);  eq == rhs_per_unit_volume;
+// The sparsity pattern is the grid's face addressing, so it never changes for a given grid.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "auvloop/engine/fv/mesh.hpp"
+
+namespace auvloop::engine::fv {
+
+struct Matrix {
+  std::vector<double> diag, upper, lower, source;
+
+  Matrix() = default;
+  explicit Matrix(const Mesh& mesh);
+
+  Matrix& operator+=(const Matrix& o);
+  Matrix& operator-=(const Matrix& o);
+  Matrix& operator*=(double s);
+  // Adds an explicit right-hand side given per unit volume (e.g. a body force, -grad p).
+  void add_rhs(const Mesh& mesh, std::span<const double> per_unit_volume);
+  // y = A x.
+  void multiply(const Mesh& mesh, std::span<const double> x, std::span<double> y) const;
+  // H(x) = source - sum_N a_N x_N per cell (OpenFOAM's H operator, off-diagonals only).
+  void h_operator(const Mesh& mesh, std::span<const double> x, std::span<double> h) const;
+  // Implicit under-relaxation (Patankar): diag / alpha, source + (1 - alpha) / alpha diag x_prev.
+  void relax(std::span<const double> x_prev, double alpha);
+};
+
+Matrix operator+(Matrix a, const Matrix& b);
+Matrix operator-(Matrix a, const Matrix& b);
+Matrix operator-(Matrix a);
+
+}  // namespace auvloop::engine::fv

@@ -1,0 +1,79 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The finite-volume view of a mesher::Grid: its geometry plus the per-face factors every operator
+// needs, computed once per grid (docs/cfd.md, "Discretisation").
+//
+// Per face f with owner P (and neighbour N for internal faces):
+//   d      = x_N - x_P (internal) or x_f - x_P (boundary)
+//   weight = owner weight of linear interpolation, phi_f = w phi_P + (1 - w) phi_N, from the
+//            distances of the two centres to the face plane (exactly 1/2 on uniform grids)
+//   alpha  = |S|^2 / (S . d): the implicit part of the face-normal gradient, over-relaxed:
+//            grad(phi)_f . S = alpha (phi_N - phi_P) + k . grad(phi)_f with k = S - alpha d
+//   k      = the non-orthogonal correction vector (zero on orthogonal faces), treated explicitly.
+// Boundary faces are numbered by their position after the internal faces (b = f - internal).
+#pragma once
+
+#include <memory>
+#include <span>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "auvloop/engine/fv/gradient.hpp"
+#include "auvloop/mesher/grid.hpp"
+
+namespace auvloop::engine::fv {
+
+class Mesh {
+ public:
+  explicit Mesh(const mesher::Grid& grid);
+  Mesh(const Mesh&) = delete;  // the gradient holds references into the mesh
+  Mesh& operator=(const Mesh&) = delete;
+
+  const mesher::Grid& grid() const { return grid_; }
+  const mesher::GridGeometry& geometry() const { return geo_; }
+  int cells() const { return grid_.cells; }
+  int faces() const { return grid_.faces(); }
+  int internal_faces() const { return grid_.internal_faces(); }
+  int boundary_faces() const { return faces() - internal_faces(); }
+  int owner(int f) const { return grid_.owner[static_cast<std::size_t>(f)]; }
+  int neighbour(int f) const { return grid_.neighbour[static_cast<std::size_t>(f)]; }
+  const Eigen::Vector3d& area(int f) const { return geo_.face_area[static_cast<std::size_t>(f)]; }
+  const Eigen::Vector3d& face_centre(int f) const {
+    return geo_.face_centre[static_cast<std::size_t>(f)];
+  }
+  const Eigen::Vector3d& centre(int c) const {
+    return geo_.cell_centre[static_cast<std::size_t>(c)];
+  }
+  double volume(int c) const { return geo_.cell_volume[static_cast<std::size_t>(c)]; }
+  double weight(int f) const { return weight_[static_cast<std::size_t>(f)]; }
+  double alpha(int f) const { return alpha_[static_cast<std::size_t>(f)]; }
+  const Eigen::Vector3d& d(int f) const { return d_[static_cast<std::size_t>(f)]; }
+  const Eigen::Vector3d& k(int f) const { return k_[static_cast<std::size_t>(f)]; }
+  // Patch index of boundary face b (b = f - internal_faces()).
+  int patch_of(int b) const { return patch_of_[static_cast<std::size_t>(b)]; }
+  double total_volume() const { return total_volume_; }
+  // The faces of cell c in a fixed order (ascending face index): per-cell gathers in this order
+  // make face sums independent of the number of threads.
+  std::span<const int> cell_faces(int c) const {
+    const auto b = static_cast<std::size_t>(cell_face_offsets_[static_cast<std::size_t>(c)]);
+    const auto e = static_cast<std::size_t>(cell_face_offsets_[static_cast<std::size_t>(c) + 1]);
+    return std::span<const int>(cell_face_list_).subspan(b, e - b);
+  }
+  // Least-squares cell gradient of cell values with their boundary-face values.
+  void gradient(std::span<const double> cells, std::span<const double> boundary,
+                std::span<Eigen::Vector3d> out) const {
+    gradient_->compute(cells, boundary, out);
+  }
+
+ private:
+  const mesher::Grid& grid_;
+  mesher::GridGeometry geo_;
+  std::vector<double> weight_, alpha_;
+  std::vector<Eigen::Vector3d> d_, k_;
+  std::vector<int> patch_of_;
+  std::vector<int> cell_face_offsets_, cell_face_list_;
+  double total_volume_ = 0;
+  std::unique_ptr<LeastSquaresGradient> gradient_;
+};
+
+}  // namespace auvloop::engine::fv

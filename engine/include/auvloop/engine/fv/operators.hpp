@@ -1,0 +1,51 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Implicit finite-volume operators (fvm) and the explicit ones they rely on (fvc). Each returns the
+// volume integral of its term as a Matrix (matrix.hpp); an equation is their sum. Boundary
+// conditions enter through ScalarField::value_coeffs; empty faces carry no flux.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "auvloop/engine/fv/field.hpp"
+#include "auvloop/engine/fv/matrix.hpp"
+
+namespace auvloop::engine::fv {
+
+// --- explicit -------------------------------------------------------------------------------
+std::vector<Eigen::Vector3d> grad(const Mesh& mesh, const ScalarField& phi);
+// Linear interpolation of a cell-centred vector to the internal faces (boundary: face values).
+Eigen::Vector3d interpolate(const Mesh& mesh, std::span<const Eigen::Vector3d> cells, int f);
+// Cell divergence of a face flux field: sum of outgoing fluxes / volume.
+std::vector<double> div(const Mesh& mesh, std::span<const double> face_flux);
+
+// --- implicit -------------------------------------------------------------------------------
+// laplacian(gamma, phi) = div(gamma grad phi): per face, gamma_f alpha_f (phi_N - phi_P) implicit
+// and gamma_f k_f . grad(phi)_f explicit (deferred non-orthogonal correction from the current
+// phi; exact on orthogonal faces, k = 0). gamma is given per face.
+Matrix laplacian(const Mesh& mesh, std::span<const double> gamma, const ScalarField& phi);
+Matrix laplacian(const Mesh& mesh, double gamma, const ScalarField& phi);
+
+// div(F, phi) with face volume fluxes F (m^3/s, positive out of the owner): upwind implicit and
+// the scheme's difference to upwind as a deferred (explicit) correction from the current phi.
+enum class Convection {
+  upwind,         // first order, bounded
+  linear_upwind,  // phi_C + grad(phi)_C . (x_f - x_C): second order, unbounded
+  van_leer,       // TVD (Darwish-Moukalled r on unstructured grids): second order, bounded
+};
+Matrix div(const Mesh& mesh, std::span<const double> flux, const ScalarField& phi,
+           Convection scheme);
+
+// Time derivative: (c0 phi + c1 phi_old + c2 phi_oldold) / dt, BDF2 (3/2, -2, 1/2) or Euler
+// (1, -1, 0) for the first step after a start.
+struct TimeScheme {
+  double dt = 1;
+  bool bdf2 = true;
+  [[nodiscard]] std::array<double, 3> coeffs() const {
+    return bdf2 ? std::array<double, 3>{1.5, -2.0, 0.5} : std::array<double, 3>{1.0, -1.0, 0.0};
+  }
+};
+Matrix ddt(const Mesh& mesh, const TimeScheme& ts, std::span<const double> old,
+           std::span<const double> oldold);
+
+}  // namespace auvloop::engine::fv

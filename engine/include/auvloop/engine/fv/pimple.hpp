@@ -1,0 +1,106 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Incompressible Navier-Stokes (constant density, kinematic pressure p / rho) on a fv::Mesh with
+// the PIMPLE algorithm: collocated velocity and pressure, Rhie-Chow face fluxes consistent with
+// the time step, BDF2 in time (Euler for the first step). docs/cfd.md states the algorithm as
+// numbered steps; engine/src/fv/pimple.cpp follows them.
+//
+// Usage: construct on a mesh, set boundary conditions on U and p (U.fix for walls, moving walls
+// and inlets; p.fix for pressure outlets; slip patches via `slip`), set initial U, call
+// initialise(), then step() once per time step.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "auvloop/engine/fv/field.hpp"
+#include "auvloop/engine/fv/linear_solver.hpp"
+#include "auvloop/engine/fv/operators.hpp"
+
+namespace auvloop::engine::fv {
+
+struct PimpleSettings {
+  double nu = 1e-6;             // kinematic viscosity (m^2/s)
+  double dt = 1e-3;             // time step (s)
+  bool bdf2 = true;             // second order in time after the first step
+  int outer_iterations = 1;     // PIMPLE outer loop (1: PISO); the paper uses 5
+  int pressure_correctors = 2;  // per outer iteration
+  int non_orthogonal_correctors = 0;
+  double relax_u = 1.0;  // momentum under-relaxation (all but the final outer iteration)
+  double relax_p = 1.0;  // pressure under-relaxation (all but the final outer iteration)
+  Convection convection = Convection::van_leer;
+  // Fastest measured (docs/cfd.md, "Pressure solver"): cholmod-pcg on 2D grids, cg-dic in 3D,
+  // where the Cholesky factor fills in too much; empty means choose by the grid.
+  std::optional<SymmetricMethod> pressure_solver;
+  double tolerance = 1e-8;     // relative tolerance of the iterative linear solvers
+  double max_courant = 50;     // a step beyond this stops the run (divergence)
+  double outer_tolerance = 0;  // stop the outer loop once momentum's initial residual is below
+};
+
+struct StepReport {
+  int step = 0;
+  double time = 0;
+  double max_courant = 0;
+  double momentum_residual = 0;  // initial normalised residual, first outer iteration (max comp)
+  double pressure_residual = 0;  // initial normalised residual, first corrector
+  double outer_residual = 0;     // initial momentum residual of the last outer iteration
+  double continuity_error = 0;   // volume-weighted mean |div phi| * dt after the step
+  int outer_iterations = 0;
+  int pressure_iterations = 0;  // Krylov iterations summed over correctors (0 for CHOLMOD)
+  double seconds_momentum = 0, seconds_pressure = 0, seconds_other = 0;
+};
+
+// Thrown when a step diverges (NaN, Courant number beyond the limit); the solver's fields are
+// those of the last good step. what() names the step, time, cell and its centre.
+struct DivergenceError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+class Pimple {
+ public:
+  Pimple(const Mesh& mesh, PimpleSettings settings);
+
+  VectorField U;
+  ScalarField p;
+  std::vector<double> phi;  // volume flux through each face (m^3/s, out of the owner)
+
+  // Marks a patch as slip (symmetry): zero normal velocity, zero tangential stress (lagged by
+  // one outer iteration through the boundary values).
+  void slip(const std::string& patch);
+  // Boundary values and face fluxes from the current U (call after setting U and its BCs).
+  void initialise();
+  StepReport step();
+
+  [[nodiscard]] double time() const { return time_; }
+  [[nodiscard]] int steps() const { return steps_; }
+  [[nodiscard]] const PimpleSettings& settings() const { return settings_; }
+  [[nodiscard]] const Mesh& mesh() const { return mesh_; }
+
+ private:
+  struct Momentum {
+    std::array<Matrix, 3> eq;  // without the pressure gradient
+  };
+  Momentum assemble_momentum(bool final);
+  void solve_momentum(Momentum& m, StepReport& r, bool first);
+  void correct_pressure(const Momentum& m, StepReport& r, bool first, bool final);
+  void apply_slip();
+  [[nodiscard]] std::vector<double> face_flux(const std::array<std::vector<double>, 3>& u) const;
+  void check(const StepReport& r) const;
+
+  const Mesh& mesh_;
+  PimpleSettings settings_;
+  LinearSolver solver_;
+  std::array<bool, 3> active_{true, true, true};  // components not normal to empty patches
+  std::vector<int> slip_patches_;
+  bool pressure_fixed_ = false;  // some patch fixes p; otherwise cell 0 is the reference
+  // Old time levels: [0] = n, [1] = n - 1.
+  std::array<std::array<std::vector<double>, 3>, 2> U_old_;
+  std::array<std::vector<double>, 2> phi_old_;
+  double time_ = 0;
+  int steps_ = 0;
+};
+
+// Maximum Courant number dt * sum |phi| / (2 V) over the cells, with the cell where it occurs.
+std::pair<double, int> courant(const Mesh& mesh, std::span<const double> phi, double dt);
+
+}  // namespace auvloop::engine::fv

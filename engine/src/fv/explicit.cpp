@@ -1,0 +1,30 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Explicit operators (fvc): cell gradient, face interpolation, divergence of a face flux.
+#include "auvloop/engine/fv/operators.hpp"
+
+namespace auvloop::engine::fv {
+
+std::vector<Eigen::Vector3d> grad(const Mesh& mesh, const ScalarField& phi) {
+  std::vector<Eigen::Vector3d> g(static_cast<std::size_t>(mesh.cells()));
+  mesh.gradient(phi.cells, phi.boundary, g);
+  return g;
+}
+
+Eigen::Vector3d interpolate(const Mesh& mesh, std::span<const Eigen::Vector3d> cells, int f) {
+  const double w = mesh.weight(f);
+  return w * cells[static_cast<std::size_t>(mesh.owner(f))] +
+         (1 - w) * cells[static_cast<std::size_t>(mesh.neighbour(f))];
+}
+
+std::vector<double> div(const Mesh& mesh, std::span<const double> face_flux) {
+  std::vector<double> d(static_cast<std::size_t>(mesh.cells()), 0.0);
+  for (int f = 0; f < mesh.faces(); ++f) {
+    const double F = face_flux[static_cast<std::size_t>(f)];
+    d[static_cast<std::size_t>(mesh.owner(f))] += F;
+    if (f < mesh.internal_faces()) d[static_cast<std::size_t>(mesh.neighbour(f))] -= F;
+  }
+  for (int c = 0; c < mesh.cells(); ++c) d[static_cast<std::size_t>(c)] /= mesh.volume(c);
+  return d;
+}
+
+}  // namespace auvloop::engine::fv

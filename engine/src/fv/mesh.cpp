@@ -1,0 +1,62 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "auvloop/engine/fv/mesh.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace auvloop::engine::fv {
+
+Mesh::Mesh(const mesher::Grid& grid)
+    : grid_(grid),
+      geo_(mesher::compute_geometry(grid)),
+      weight_(static_cast<std::size_t>(grid.faces()), 1.0),
+      alpha_(static_cast<std::size_t>(grid.faces()), 0.0),
+      d_(static_cast<std::size_t>(grid.faces())),
+      k_(static_cast<std::size_t>(grid.faces())),
+      patch_of_(static_cast<std::size_t>(grid.faces() - grid.internal_faces()), -1) {
+  for (int f = 0; f < faces(); ++f) {
+    const auto fs = static_cast<std::size_t>(f);
+    const Eigen::Vector3d& S = area(f);
+    const Eigen::Vector3d& xP = centre(owner(f));
+    if (f < internal_faces()) {
+      const Eigen::Vector3d& xN = centre(neighbour(f));
+      d_[fs] = xN - xP;
+      const double dP = std::abs(S.dot(face_centre(f) - xP));
+      const double dN = std::abs(S.dot(xN - face_centre(f)));
+      weight_[fs] = dN / (dP + dN);
+    } else {
+      d_[fs] = face_centre(f) - xP;
+    }
+    const double Sd = S.dot(d_[fs]);
+    if (!(Sd > 0)) {
+      throw std::runtime_error("fv::Mesh: face " + std::to_string(f) + " of grid '" + grid.name +
+                               "' has its cell centres on the same side (S . d <= 0)");
+    }
+    alpha_[fs] = S.squaredNorm() / Sd;
+    k_[fs] = S - alpha_[fs] * d_[fs];
+  }
+  for (std::size_t p = 0; p < grid.patches.size(); ++p) {
+    const auto& patch = grid.patches[p];
+    for (int i = 0; i < patch.size; ++i)
+      patch_of_[static_cast<std::size_t>(patch.start + i - internal_faces())] = static_cast<int>(p);
+  }
+  for (double v : geo_.cell_volume) total_volume_ += v;
+  cell_face_offsets_.assign(static_cast<std::size_t>(cells()) + 1, 0);
+  for (int f = 0; f < faces(); ++f) {
+    ++cell_face_offsets_[static_cast<std::size_t>(owner(f)) + 1];
+    if (f < internal_faces()) ++cell_face_offsets_[static_cast<std::size_t>(neighbour(f)) + 1];
+  }
+  for (std::size_t c = 0; c < static_cast<std::size_t>(cells()); ++c)
+    cell_face_offsets_[c + 1] += cell_face_offsets_[c];
+  cell_face_list_.resize(static_cast<std::size_t>(cell_face_offsets_.back()));
+  std::vector<int> fill(cell_face_offsets_.begin(), cell_face_offsets_.end() - 1);
+  for (int f = 0; f < faces(); ++f) {
+    cell_face_list_[static_cast<std::size_t>(fill[static_cast<std::size_t>(owner(f))]++)] = f;
+    if (f < internal_faces())
+      cell_face_list_[static_cast<std::size_t>(fill[static_cast<std::size_t>(neighbour(f))]++)] = f;
+  }
+  gradient_ = std::make_unique<LeastSquaresGradient>(grid_, geo_);
+}
+
+}  // namespace auvloop::engine::fv

@@ -1,0 +1,40 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// PIMPLE step 2 (docs/cfd.md): the momentum equation per velocity component,
+//     ddt(U) + div(phi, U) - laplacian(nu, U) == -grad(p),
+// with the face flux phi and the pressure of the previous outer iteration (lagged), deferred
+// convection and non-orthogonal corrections from the current U, and Patankar under-relaxation in
+// all but the final outer iteration. The predictor solves it with the lagged grad(p).
+#include "auvloop/engine/fv/pimple.hpp"
+
+namespace auvloop::engine::fv {
+
+Pimple::Momentum Pimple::assemble_momentum(bool final) {
+  const TimeScheme ts{settings_.dt, settings_.bdf2 && steps_ > 0};
+  Momentum m;
+  for (std::size_t i = 0; i < 3; ++i) {
+    if (!active_[i]) continue;
+    m.eq[i] = ddt(mesh_, ts, U_old_[0][i], U_old_[1][i]) +
+              div(mesh_, phi, U.c[i], settings_.convection) -
+              laplacian(mesh_, settings_.nu, U.c[i]);
+    if (!final && settings_.relax_u < 1) m.eq[i].relax(U.c[i].cells, settings_.relax_u);
+  }
+  return m;
+}
+
+void Pimple::solve_momentum(Momentum& m, StepReport& r, bool first) {
+  std::vector<Eigen::Vector3d> gp = grad(mesh_, p);
+  std::vector<double> rhs(static_cast<std::size_t>(mesh_.cells()));
+  r.outer_residual = 0;
+  for (std::size_t i = 0; i < 3; ++i) {
+    if (!active_[i]) continue;
+    for (std::size_t c = 0; c < rhs.size(); ++c) rhs[c] = -gp[c][static_cast<Eigen::Index>(i)];
+    Matrix eq = m.eq[i];
+    eq.add_rhs(mesh_, rhs);
+    const auto s = solver_.solve_asymmetric(eq, U.c[i].cells, AsymmetricMethod::bicgstab_jacobi);
+    if (first) r.momentum_residual = std::max(r.momentum_residual, s.initial_residual);
+    r.outer_residual = std::max(r.outer_residual, s.initial_residual);
+    U.c[i].update_boundary(mesh_);
+  }
+}
+
+}  // namespace auvloop::engine::fv

@@ -1,0 +1,172 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The PIMPLE time step (docs/cfd.md, "Algorithm"):
+//   1. shift the time levels (U, phi); BDF2 from the second step, Euler on the first;
+//   2. for each outer iteration: refresh slip values, assemble momentum with the lagged flux
+//      and pressure, solve the predictor (momentum.cpp);
+//   3. then the pressure correctors (pressure.cpp), the last outer iteration unrelaxed;
+//   4. Courant number, continuity error, divergence checks; on failure restore the last good
+//      fields and throw DivergenceError naming where and when.
+#include "auvloop/engine/fv/pimple.hpp"
+
+#include <chrono>
+#include <cmath>
+
+#include <fmt/format.h>
+
+namespace auvloop::engine::fv {
+
+namespace {
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+}  // namespace
+
+std::pair<double, int> courant(const Mesh& mesh, std::span<const double> phi, double dt) {
+  std::vector<double> sum(static_cast<std::size_t>(mesh.cells()), 0.0);
+  for (int f = 0; f < mesh.faces(); ++f) {
+    const double a = std::abs(phi[static_cast<std::size_t>(f)]);
+    sum[static_cast<std::size_t>(mesh.owner(f))] += a;
+    if (f < mesh.internal_faces()) sum[static_cast<std::size_t>(mesh.neighbour(f))] += a;
+  }
+  std::pair<double, int> worst{0.0, 0};
+  for (int c = 0; c < mesh.cells(); ++c) {
+    const double co = 0.5 * dt * sum[static_cast<std::size_t>(c)] / mesh.volume(c);
+    if (co > worst.first) worst = {co, c};
+  }
+  return worst;
+}
+
+Pimple::Pimple(const Mesh& mesh, PimpleSettings settings)
+    : U(mesh, "U"),
+      p(mesh, "p"),
+      phi(static_cast<std::size_t>(mesh.faces()), 0.0),
+      mesh_(mesh),
+      settings_(settings),
+      solver_(mesh, settings.tolerance) {
+  // A direction normal to an empty patch carries no velocity component (2D grids).
+  for (const auto& patch : mesh.grid().patches) {
+    if (patch.type != mesher::PatchType::empty || patch.size == 0) continue;
+    const Eigen::Vector3d n = mesh.area(patch.start).normalized();
+    for (int i = 0; i < 3; ++i)
+      if (std::abs(n[i]) > 0.999) active_[static_cast<std::size_t>(i)] = false;
+  }
+  if (!settings_.pressure_solver) {
+    const bool two_d = !(active_[0] && active_[1] && active_[2]);
+    settings_.pressure_solver = two_d ? SymmetricMethod::cholmod_pcg : SymmetricMethod::cg_dic;
+  }
+}
+
+void Pimple::slip(const std::string& patch) {
+  slip_patches_.push_back(patch_index(mesh_, patch));
+  U.fix(mesh_, patch, Eigen::Vector3d::Zero());
+}
+
+void Pimple::apply_slip() {
+  for (int pi : slip_patches_) {
+    const auto& patch = mesh_.grid().patches[static_cast<std::size_t>(pi)];
+    for (int i = 0; i < patch.size; ++i) {
+      const int f = patch.start + i;
+      const Eigen::Vector3d n = mesh_.area(f).normalized();
+      const Eigen::Vector3d u = U.cell(mesh_.owner(f));
+      const Eigen::Vector3d t = u - u.dot(n) * n;
+      for (std::size_t c = 0; c < 3; ++c)
+        U.c[c].bcs[static_cast<std::size_t>(pi)].value[static_cast<std::size_t>(i)] =
+            t[static_cast<Eigen::Index>(c)];
+    }
+  }
+  U.update_boundary(mesh_);
+}
+
+void Pimple::initialise() {
+  pressure_fixed_ = false;
+  for (const auto& bc : p.bcs) pressure_fixed_ = pressure_fixed_ || bc.kind == BcKind::fixed_value;
+  apply_slip();
+  p.update_boundary(mesh_);
+  std::array<std::vector<double>, 3> u{U.c[0].cells, U.c[1].cells, U.c[2].cells};
+  phi = face_flux(u);
+  for (int b = 0; b < mesh_.boundary_faces(); ++b) {
+    const int f = b + mesh_.internal_faces();
+    phi[static_cast<std::size_t>(f)] =
+        U.c[0].is_empty(mesh_, b) ? 0.0 : U.face(b).dot(mesh_.area(f));
+  }
+  for (auto& level : U_old_) level = u;
+  for (auto& level : phi_old_) level = phi;
+  steps_ = 0;
+}
+
+StepReport Pimple::step() {
+  const VectorField U_good = U;
+  const ScalarField p_good = p;
+  const auto phi_good = phi;
+  const auto old_good = U_old_;
+  const auto phi_old_good = phi_old_;
+  U_old_[1] = U_old_[0];
+  for (std::size_t i = 0; i < 3; ++i) U_old_[0][i] = U.c[i].cells;
+  phi_old_[1] = phi_old_[0];
+  phi_old_[0] = phi;
+  StepReport r;
+  r.step = steps_ + 1;
+  r.time = time_ + settings_.dt;
+  try {
+    for (int outer = 1; outer <= settings_.outer_iterations; ++outer) {
+      const bool final = outer == settings_.outer_iterations;
+      auto t0 = std::chrono::steady_clock::now();
+      apply_slip();
+      Momentum m = assemble_momentum(final);
+      solve_momentum(m, r, outer == 1);
+      r.seconds_momentum += seconds_since(t0);
+      t0 = std::chrono::steady_clock::now();
+      for (int corr = 0; corr < settings_.pressure_correctors; ++corr)
+        correct_pressure(m, r, outer == 1 && corr == 0, final);
+      r.seconds_pressure += seconds_since(t0);
+      r.outer_iterations = outer;
+      // Converged outer loop: momentum's initial residual of this iteration is small enough.
+      if (outer > 1 && r.outer_residual < settings_.outer_tolerance) break;
+    }
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto [co, cell] = courant(mesh_, phi, settings_.dt);
+    r.max_courant = co;
+    const auto d = div(mesh_, phi);
+    for (int c = 0; c < mesh_.cells(); ++c)
+      r.continuity_error += std::abs(d[static_cast<std::size_t>(c)]) * mesh_.volume(c);
+    r.continuity_error *= settings_.dt / mesh_.total_volume();
+    r.seconds_other = seconds_since(t0);
+    check(r);
+  } catch (const std::exception& e) {
+    U = U_good;
+    p = p_good;
+    phi = phi_good;
+    U_old_ = old_good;
+    phi_old_ = phi_old_good;
+    throw DivergenceError(
+        fmt::format("step {} (t = {:.6g} s) diverged; fields of t = {:.6g} s "
+                    "kept: {}",
+                    r.step, r.time, time_, e.what()));
+  }
+  time_ = r.time;
+  ++steps_;
+  return r;
+}
+
+void Pimple::check(const StepReport& r) const {
+  for (int c = 0; c < mesh_.cells(); ++c) {
+    const auto s = static_cast<std::size_t>(c);
+    if (!std::isfinite(p.cells[s]) || !U.cell(c).allFinite()) {
+      const auto& x = mesh_.centre(c);
+      throw std::runtime_error(
+          fmt::format("non-finite velocity or pressure in cell {} at "
+                      "({:.4g}, {:.4g}, {:.4g}) m",
+                      c, x.x(), x.y(), x.z()));
+    }
+  }
+  if (r.max_courant > settings_.max_courant) {
+    const auto [co, cell] = courant(mesh_, phi, settings_.dt);
+    const auto& x = mesh_.centre(cell);
+    throw std::runtime_error(
+        fmt::format("Courant number {:.3g} beyond the limit {:.3g} in cell {} "
+                    "at ({:.4g}, {:.4g}, {:.4g}) m",
+                    co, settings_.max_courant, cell, x.x(), x.y(), x.z()));
+  }
+}
+
+}  // namespace auvloop::engine::fv

@@ -1,0 +1,124 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// PIMPLE step 3 (docs/cfd.md): one pressure corrector.
+//   a. A = the diagonal of the momentum matrix, D = V / A, HbyA = H(U) / A with H(U) the
+//      off-diagonal part and sources (old time levels, deferred corrections): U = HbyA - D grad p.
+//   b. Rhie-Chow face flux phiHbyA = (HbyA)_f . S + (D / dt)_f sum_k (-c_k) (phi_k - (U_k)_f . S)
+//      over the old time levels k: the old-time part of H is taken from the old face fluxes,
+//      not from interpolated velocities, so the converged flux does not depend on dt.
+//   c. laplacian(D_f, p) == div(phiHbyA), with non-orthogonal correctors.
+//   d. phi = phiHbyA - the pressure equation's face flux (conservative to the solver tolerance);
+//      p relaxed in all but the final outer iteration; U = HbyA - D grad(p).
+#include "auvloop/engine/fv/pimple.hpp"
+
+namespace auvloop::engine::fv {
+
+namespace {
+Eigen::Vector3d cell_vector(const std::array<std::vector<double>, 3>& u, std::size_t c) {
+  return {u[0][c], u[1][c], u[2][c]};
+}
+}  // namespace
+
+std::vector<double> Pimple::face_flux(const std::array<std::vector<double>, 3>& u) const {
+  std::vector<double> f(static_cast<std::size_t>(mesh_.faces()), 0.0);
+  for (int i = 0; i < mesh_.internal_faces(); ++i) {
+    const double w = mesh_.weight(i);
+    const auto P = static_cast<std::size_t>(mesh_.owner(i));
+    const auto N = static_cast<std::size_t>(mesh_.neighbour(i));
+    f[static_cast<std::size_t>(i)] =
+        (w * cell_vector(u, P) + (1 - w) * cell_vector(u, N)).dot(mesh_.area(i));
+  }
+  return f;
+}
+
+void Pimple::correct_pressure(const Momentum& m, StepReport& r, bool first, bool final) {
+  const auto n = static_cast<std::size_t>(mesh_.cells());
+  const std::size_t a0 = active_[0] ? 0 : (active_[1] ? 1 : 2);
+  const auto& A = m.eq[a0].diag;
+  std::vector<double> D(n);
+  for (std::size_t c = 0; c < n; ++c) D[c] = mesh_.volume(static_cast<int>(c)) / A[c];
+  std::array<std::vector<double>, 3> HbyA{std::vector<double>(n, 0.0), std::vector<double>(n, 0.0),
+                                          std::vector<double>(n, 0.0)};
+  for (std::size_t i = 0; i < 3; ++i) {
+    if (!active_[i]) continue;
+    m.eq[i].h_operator(mesh_, U.c[i].cells, HbyA[i]);
+    for (std::size_t c = 0; c < n; ++c) HbyA[i][c] /= A[c];
+  }
+  // b. Rhie-Chow flux with the time-consistent correction.
+  std::vector<double> phiHbyA = face_flux(HbyA);
+  const auto coeffs = TimeScheme{settings_.dt, settings_.bdf2 && steps_ > 0}.coeffs();
+  for (std::size_t k = 0; k < 2; ++k) {
+    if (coeffs[k + 1] == 0.0) continue;
+    const auto interpolated = face_flux(U_old_[k]);
+    for (int f = 0; f < mesh_.internal_faces(); ++f) {
+      const auto fs = static_cast<std::size_t>(f);
+      const double w = mesh_.weight(f);
+      const double Df = w * D[static_cast<std::size_t>(mesh_.owner(f))] +
+                        (1 - w) * D[static_cast<std::size_t>(mesh_.neighbour(f))];
+      phiHbyA[fs] += Df / settings_.dt * -coeffs[k + 1] * (phi_old_[k][fs] - interpolated[fs]);
+    }
+  }
+  std::vector<double> Df(static_cast<std::size_t>(mesh_.faces()));
+  for (int f = 0; f < mesh_.faces(); ++f) {
+    const auto P = static_cast<std::size_t>(mesh_.owner(f));
+    if (f < mesh_.internal_faces()) {
+      const double w = mesh_.weight(f);
+      Df[static_cast<std::size_t>(f)] =
+          w * D[P] + (1 - w) * D[static_cast<std::size_t>(mesh_.neighbour(f))];
+    } else {
+      const int b = f - mesh_.internal_faces();
+      Df[static_cast<std::size_t>(f)] = D[P];
+      const bool fixed_u = U.c[a0].value_coeffs(mesh_, b)[0] == 0.0;
+      phiHbyA[static_cast<std::size_t>(f)] =
+          U.c[a0].is_empty(mesh_, b)
+              ? 0.0
+              : (fixed_u ? U.face(b) : cell_vector(HbyA, P)).dot(mesh_.area(f));
+    }
+  }
+  // c. and d.
+  const std::vector<double> p_prev = p.cells;
+  const auto net = div(mesh_, phiHbyA);
+  for (int corr = 0; corr <= settings_.non_orthogonal_correctors; ++corr) {
+    const auto gp = grad(mesh_, p);
+    Matrix eq = laplacian(mesh_, Df, p);
+    for (std::size_t c = 0; c < n; ++c) eq.source[c] += net[c] * mesh_.volume(static_cast<int>(c));
+    if (!pressure_fixed_) eq.diag[0] += eq.diag[0];  // reference value p = 0 in cell 0
+    const auto s = solver_.solve_symmetric(eq, p.cells, *settings_.pressure_solver);
+    if (first && corr == 0) r.pressure_residual = s.initial_residual;
+    r.pressure_iterations += s.iterations;
+    // Face flux of the pressure equation with the same explicit part as its source.
+    for (int f = 0; f < mesh_.faces(); ++f) {
+      const auto fs = static_cast<std::size_t>(f);
+      const auto P = static_cast<std::size_t>(mesh_.owner(f));
+      double pf;
+      Eigen::Vector3d g;
+      if (f < mesh_.internal_faces()) {
+        pf = p.cells[static_cast<std::size_t>(mesh_.neighbour(f))];
+        g = interpolate(mesh_, gp, f);
+      } else {
+        const int b = f - mesh_.internal_faces();
+        const auto [ca, cb] = p.value_coeffs(mesh_, b);
+        if (p.is_empty(mesh_, b) || ca == 1.0) {
+          phi[fs] = phiHbyA[fs];
+          continue;
+        }
+        pf = cb;
+        g = gp[P];
+      }
+      phi[fs] = phiHbyA[fs] - Df[fs] * (mesh_.alpha(f) * (pf - p.cells[P]) + mesh_.k(f).dot(g));
+    }
+  }
+  if (!final && settings_.relax_p < 1) {
+    for (std::size_t c = 0; c < n; ++c)
+      p.cells[c] = p_prev[c] + settings_.relax_p * (p.cells[c] - p_prev[c]);
+  }
+  p.update_boundary(mesh_);
+  const auto gp = grad(mesh_, p);
+  for (std::size_t i = 0; i < 3; ++i) {
+    if (!active_[i]) continue;
+    for (std::size_t c = 0; c < n; ++c)
+      U.c[i].cells[c] = HbyA[i][c] - D[c] * gp[c][static_cast<Eigen::Index>(i)];
+    U.c[i].update_boundary(mesh_);
+  }
+}
+
+}  // namespace auvloop::engine::fv

@@ -1,0 +1,42 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Body-fitted grid of a circular cylinder in a 2D channel (one cell thick, empty sides), as the
+// Schaefer-Turek DFG benchmark needs: an O-grid from the cylinder to a rectangle spanning the
+// channel height around it (four blocks, radial lines straight, cells graded towards the wall),
+// and a Cartesian block from that rectangle to the outlet. Patches: inlet (x = x0), outlet
+// (x = x1), walls (channel bottom and top), cylinder, front and back (empty).
+#pragma once
+
+#include <array>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "auvloop/mesher/grid.hpp"
+
+namespace auvloop::mesher {
+
+struct CylinderChannelSpec {
+  double length = 2.2;  // channel [0, length] x [0, height]
+  double height = 0.41;
+  double cx = 0.2, cy = 0.2;  // cylinder centre
+  double radius = 0.05;
+  double box_half_width = 0.2;  // the O-grid's rectangle spans cx -/+ this in x
+  int cells_per_side = 32;      // cells along each side of the rectangle (4 x around the cylinder)
+  int radial_cells = 32;        // from the cylinder to the rectangle
+  double radial_ratio = 8.0;    // outermost / innermost radial cell size
+  int downstream_cells = 80;    // from the rectangle to the outlet
+  double downstream_ratio = 6.0;  // last / first cell size downstream
+  double thickness = 0.01;        // z extent of the one-cell-thick grid
+};
+
+Grid cylinder_channel(const CylinderChannelSpec& spec, const std::string& name = "cylinder");
+
+// Face-addressed grid from hexahedra given by eight point indices each (VTK/OpenFOAM hex order:
+// bottom quad 0-1-2-3 counter-clockwise seen from above, top quad 4-5-6-7 above it). Shared faces
+// become internal faces (owner < neighbour, upper-triangular order); boundary faces are grouped
+// into patches by `patch_of(face centre)` returning an index into `patches`.
+Grid hex_grid(std::vector<Eigen::Vector3d> points, const std::vector<std::array<int, 8>>& hexes,
+              std::vector<Patch> patches,
+              const std::function<int(const Eigen::Vector3d&)>& patch_of, const std::string& name);
+
+}  // namespace auvloop::mesher

@@ -1,0 +1,49 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Runs every validation case of the engine (the same definitions `auvloop validate` runs): the
+// CI-sized version, or the full one when built with AUVLOOP_FULL_VALIDATION (label slow). Each
+// row carries its own tolerance and where it comes from (engine/src/validation/cases.cpp).
+#include <gtest/gtest.h>
+
+#include "auvloop/engine/validation.hpp"
+
+using namespace auvloop::engine;
+
+namespace {
+// The two builds need distinct test names: ctest keys labels by name.
+#ifdef AUVLOOP_FULL_VALIDATION
+constexpr bool kQuick = false;
+#define FV_SUITE FvValidationFull
+#else
+constexpr bool kQuick = true;
+#define FV_SUITE FvValidation
+#endif
+
+void run(const std::string& name) {
+  for (const auto& c : validation::cases()) {
+    if (c.name != name) continue;
+    const auto result = c.run(kQuick);
+    for (const auto& n : result.notes) std::printf("  %s\n", n.c_str());
+    ASSERT_FALSE(result.rows.empty());
+    for (const auto& r : result.rows) {
+      std::printf("  %-28s %10.5f  reference %8.4f  error %8.5f  tolerance %6.3f\n",
+                  r.quantity.c_str(), r.value, r.reference, r.error, r.tolerance);
+      EXPECT_TRUE(r.pass) << r.quantity;
+    }
+    return;
+  }
+  FAIL() << "no validation case " << name;
+}
+}  // namespace
+
+TEST(FV_SUITE, ManufacturedSolutionSecondOrder) {
+  run("mms");
+}
+TEST(FV_SUITE, TaylorGreenBdf2SecondOrder) {
+  run("taylor-green");
+}
+TEST(FV_SUITE, CavityRe100Ghia) {
+  run("cavity-re100");
+}
+TEST(FV_SUITE, CavityRe1000Ghia) {
+  run("cavity-re1000");
+}

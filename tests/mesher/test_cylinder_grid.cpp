@@ -1,0 +1,44 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The cylinder-in-a-channel O-grid: the grid invariants hold, the volume is the channel minus the
+// inscribed polygon of the cylinder (exactly, since the cylinder wall is made of chords), and the
+// patches have the expected sizes.
+#include <cmath>
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+#include "auvloop/mesher/cylinder_grid.hpp"
+
+using namespace auvloop::mesher;
+
+TEST(CylinderGrid, ValidWithTheVolumeOfTheChannelMinusThePolygon) {
+  CylinderChannelSpec s;
+  s.cells_per_side = 8;
+  s.radial_cells = 6;
+  s.downstream_cells = 10;
+  const Grid g = cylinder_channel(s);
+  const auto geo = compute_geometry(g);
+  EXPECT_NO_THROW(validate(g, geo));
+  EXPECT_EQ(g.cells, 4 * 8 * 6 + 10 * 8);
+  const int n = 4 * s.cells_per_side;  // chords on the cylinder (uniform in angle per quadrant)
+  double polygon = 0;
+  // Per-quadrant angular spacing differs, so sum the triangles of the actual cylinder faces.
+  const auto& cyl = g.patches[3];
+  ASSERT_EQ(cyl.name, "cylinder");
+  EXPECT_EQ(cyl.size, n);
+  for (int i = 0; i < cyl.size; ++i) {
+    const int f = cyl.start + i;
+    const Eigen::Vector3d a = g.points[static_cast<std::size_t>(g.face_point(f, 0))];
+    const Eigen::Vector3d b = g.points[static_cast<std::size_t>(g.face_point(f, 2))];
+    const Eigen::Vector2d da(a.x() - s.cx, a.y() - s.cy), db(b.x() - s.cx, b.y() - s.cy);
+    polygon += 0.5 * std::abs(da.x() * db.y() - da.y() * db.x());
+  }
+  EXPECT_NEAR(polygon, std::numbers::pi * s.radius * s.radius, 0.03 * s.radius * s.radius);
+  double volume = 0;
+  for (double v : geo.cell_volume) volume += v;
+  EXPECT_NEAR(volume, (s.length * s.height - polygon) * s.thickness, 1e-12);
+  EXPECT_EQ(g.patches[0].size, s.cells_per_side);  // inlet: the O-grid's left side
+  EXPECT_EQ(g.patches[1].size, s.cells_per_side);  // outlet
+  EXPECT_EQ(g.patches[2].size, 2 * (s.cells_per_side + s.downstream_cells));
+  EXPECT_EQ(g.patches[4].size, g.cells);
+}
