@@ -182,7 +182,8 @@ Outcome objective_from_metrics(const Study& s, const json& metrics, double durat
   Outcome o;
   o.metrics = metrics;
   double total = 0;
-  for (const auto& [name, w] : s.weights) {
+  for (const auto& [index_name, w] : s.weights) {
+    const std::string& name = index_name;  // (clang 14 cannot capture a structured binding)
     const auto& indices = objective_indices();
     const auto it = std::find_if(indices.begin(), indices.end(),
                                  [&](const auto& p) { return p.first == name; });
