@@ -1,0 +1,188 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "auvloop/mesher/fin_grid.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "auvloop/mesher/cell_assembly.hpp"
+#include "auvloop/mesher/generators.hpp"
+
+namespace auvloop::mesher {
+
+namespace {
+using Vec2 = Eigen::Vector2d;  // (chord, normal) coordinates of a unit-chord section
+
+void check(bool ok, const std::string& fin, const char* setting, const std::string& why) {
+  if (!ok) throw std::invalid_argument(fmt::format("fin grid {}: {} {}", fin, setting, why));
+}
+
+void check_spec(const geometry::FinGeometry& fin, const FinGridSpec& s) {
+  const auto& n = fin.name();
+  check(s.chordwise_cells >= 2, n, "chordwise_cells", "must be at least 2");
+  check(s.normal_cells >= 0, n, "normal_cells", "must not be negative (0: derive from growth)");
+  check(s.cap_cells >= 0, n, "cap_cells", "must not be negative (0: derive from growth)");
+  check(s.embedded_cells >= 1, n, "embedded_cells", "must be at least 1");
+  check(s.span_cells >= 1, n, "span_cells", "must be at least 1");
+  check(s.growth >= 1, n, "growth", "must be at least 1");
+  check(s.extent > 0, n, "extent", "must be positive");
+  check(s.cap_height > 0, n, "cap_height", "must be positive");
+  check(s.first_cell > 0, n, "first_cell", "must be positive");
+  const double limit = std::min({s.extent, s.cap_height, fin.set().span});
+  check(s.first_cell < limit, n, "first_cell",
+        fmt::format("({:.4g} m) must be smaller than extent, cap_height and the span ({:.4g} m)",
+                    s.first_cell, limit));
+}
+
+// The section loop for unit chord, leading edge first, along the upper side to the trailing
+// edge and back along the lower side: (chord fraction, side) per point. A sharp trailing edge is
+// one point; a blunt one two, joined by the base.
+struct SectionLoop {
+  std::vector<double> x;
+  std::vector<int> side;
+  int m = 0;  // chordwise cells per side
+  [[nodiscard]] int size() const { return static_cast<int>(x.size()); }
+  [[nodiscard]] int upper(int k) const { return k; }  // chord node k on the upper side
+  [[nodiscard]] int lower(int k) const { return (size() - k) % size(); }
+};
+
+SectionLoop section_loop(int m, bool sharp) {
+  SectionLoop loop;
+  loop.m = m;
+  std::vector<double> xs;
+  for (int k = 0; k <= m; ++k) xs.push_back(0.5 * (1 - std::cos(std::numbers::pi * k / m)));
+  for (int k = 0; k <= m; ++k) {
+    loop.x.push_back(xs[static_cast<std::size_t>(k)]);
+    loop.side.push_back(1);
+  }
+  for (int k = sharp ? m - 1 : m; k >= 1; --k) {
+    loop.x.push_back(xs[static_cast<std::size_t>(k)]);
+    loop.side.push_back(-1);
+  }
+  return loop;
+}
+
+// Directions of the outward lines in the section plane: averaged segment normals, smoothed
+// round the loop so that the lines fan out around the trailing edge. Similar sections share them.
+std::vector<Vec2> line_directions(const geometry::NacaSection& sec, const SectionLoop& loop) {
+  const auto n = static_cast<std::size_t>(loop.size());
+  std::vector<Vec2> q(n), seg(n), dir(n);
+  for (std::size_t p = 0; p < n; ++p) q[p] = sec.surface(loop.x[p], loop.side[p]);
+  for (std::size_t p = 0; p < n; ++p) {
+    const Vec2 t = (q[(p + 1) % n] - q[p]).normalized();
+    seg[p] = Vec2(-t.y(), t.x());  // clockwise loop: outward is the left-hand normal
+  }
+  for (std::size_t p = 0; p < n; ++p) dir[p] = (seg[(p + n - 1) % n] + seg[p]).normalized();
+  constexpr int kSmoothing = 10;  // spreads the trailing-edge turn over about three cells
+  for (int it = 0; it < kSmoothing; ++it) {
+    auto next = dir;
+    for (std::size_t p = 0; p < n; ++p)
+      next[p] = (dir[(p + n - 1) % n] + 2 * dir[p] + dir[(p + 1) % n]).normalized();
+    dir = next;
+  }
+  return dir;
+}
+
+// Stations along the post (rho, m from the hull axis): uniform inside the hull, clustered at
+// the tip from both sides. Returns the stations and the index of the tip.
+std::pair<std::vector<double>, int> span_stations(const geometry::FinGeometry& fin,
+                                                  const FinGridSpec& s) {
+  const double inner = fin.inner_radius(), root = fin.set().root_radius();
+  const double tip = fin.set().tip_radius;
+  auto rho = graded_nodes(inner, root, s.embedded_cells);
+  const auto down = stretched_nodes(0, tip - root, s.first_cell, s.span_cells);
+  for (auto it = down.rbegin() + 1; it != down.rend(); ++it) rho.push_back(tip - *it);
+  const int k_tip = static_cast<int>(rho.size()) - 1;
+  const auto up = s.cap_cells > 0 ? stretched_nodes(0, s.cap_height, s.first_cell, s.cap_cells)
+                                  : grown_nodes(0, s.cap_height, s.first_cell, s.growth);
+  for (std::size_t k = 1; k < up.size(); ++k) rho.push_back(tip + up[k]);
+  return {rho, k_tip};
+}
+}  // namespace
+
+Grid fin_grid(const geometry::FinGeometry& fin, const FinGridSpec& s) {
+  check_spec(fin, s);
+  const auto& sec = fin.set().section;
+  const SectionLoop loop = section_loop(s.chordwise_cells, sec.sharp_trailing_edge);
+  const auto dir = line_directions(sec, loop);
+  const auto dist = s.normal_cells > 0 ? stretched_nodes(0, s.extent, s.first_cell, s.normal_cells)
+                                       : grown_nodes(0, s.extent, s.first_cell, s.growth);
+  const auto [rho, k_tip] = span_stations(fin, s);
+  const int np = loop.size(), nj = static_cast<int>(dist.size()) - 1;
+  const int nk = static_cast<int>(rho.size()) - 1;
+  const double tip = fin.set().tip_radius;
+
+  CellAssembler a;
+  std::vector<std::pair<int, int>> tag;  // (j, k) of every point, for the patch classifier
+  for (int k = 0; k <= nk; ++k) {
+    const double r = std::min(rho[static_cast<std::size_t>(k)], tip);
+    const Eigen::Vector3d lift = (rho[static_cast<std::size_t>(k)] - r) * fin.span_axis();
+    for (int j = 0; j <= nj; ++j) {
+      for (int p = 0; p < np; ++p) {
+        const auto pu = static_cast<std::size_t>(p);
+        const Eigen::Vector3d wall = fin.point(r, loop.x[pu], loop.side[pu], 0.0);
+        const Eigen::Vector3d out =
+            dir[pu].x() * fin.chord_axis() + dir[pu].y() * fin.normal_axis();
+        a.add_point(wall + lift + dist[static_cast<std::size_t>(j)] * out);
+        tag.emplace_back(j, k);
+      }
+    }
+  }
+  const auto P = [&](int p, int j, int k) { return (p % np) + np * (j + (nj + 1) * k); };
+  const auto block = [&](auto corners, auto sample) {
+    // One corner order per block, chosen on a representative cell; validate() checks all.
+    const bool flip = !(a.signed_volume(sample) > 0);
+    return [corners, flip](auto... idx) {
+      HexCorners c = corners(idx...);
+      if (flip) std::swap_ranges(c.begin(), c.begin() + 4, c.begin() + 4);
+      return c;
+    };
+  };
+  const auto o_corners = [&](int p, int j, int k) {
+    return HexCorners{
+        P(p, j, k),     P(p + 1, j, k),     P(p + 1, j + 1, k),     P(p, j + 1, k),
+        P(p, j, k + 1), P(p + 1, j, k + 1), P(p + 1, j + 1, k + 1), P(p, j + 1, k + 1)};
+  };
+  const auto column_corners = [&](int m, int k) {
+    const int u0 = loop.upper(m), u1 = loop.upper(m + 1), l1 = loop.lower(m + 1),
+              l0 = loop.lower(m);
+    return HexCorners{P(u0, 0, k),     P(u1, 0, k),     P(l1, 0, k),     P(l0, 0, k),
+                      P(u0, 0, k + 1), P(u1, 0, k + 1), P(l1, 0, k + 1), P(l0, 0, k + 1)};
+  };
+  const auto o_hex = block(o_corners, o_corners(loop.m / 2, 0, 0));
+  const auto column_hex = block(column_corners, column_corners(loop.m / 2, nk - 1));
+  for (int k = 0; k < nk; ++k)
+    for (int j = 0; j < nj; ++j)
+      for (int p = 0; p < np; ++p) a.add_hex(o_hex(p, j, k));
+  for (int k = k_tip; k < nk; ++k)
+    for (int m = 0; m < loop.m; ++m) a.add_hex(column_hex(m, k));
+
+  const auto& name = fin.name();
+  return a.build(name, {{name, PatchType::wall}, {name + "_overset", PatchType::overset}},
+                 [&](std::span<const int> f) {
+                   const auto all = [&](auto pred) {
+                     return std::all_of(f.begin(), f.end(), [&](int q) {
+                       return pred(tag[static_cast<std::size_t>(q)]);
+                     });
+                   };
+                   if (all([&](auto t) { return t.first == 0 && t.second <= k_tip; })) return 0;
+                   if (all([&](auto t) { return t.first == nj; }) ||
+                       all([&](auto t) { return t.second == 0; }) ||
+                       all([&](auto t) { return t.second == nk; }))
+                     return 1;
+                   return -1;
+                 });
+}
+
+Eigen::Isometry3d fin_placement(const geometry::FinGeometry& fin, double deflection) {
+  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+  t.translate(fin.post_origin());
+  t.rotate(fin.rotation(deflection));
+  t.translate(-fin.post_origin());
+  return t;
+}
+
+}  // namespace auvloop::mesher
