@@ -23,6 +23,7 @@ void check(bool ok, const std::string& fin, const char* setting, const std::stri
 void check_spec(const geometry::FinGeometry& fin, const FinGridSpec& s) {
   const auto& n = fin.name();
   check(s.chordwise_cells >= 2, n, "chordwise_cells", "must be at least 2");
+  check(s.trailing_edge_fan >= 1, n, "trailing_edge_fan", "must be at least 1");
   check(s.normal_cells >= 0, n, "normal_cells", "must not be negative (0: derive from growth)");
   check(s.cap_cells >= 0, n, "cap_cells", "must not be negative (0: derive from growth)");
   check(s.embedded_cells >= 1, n, "embedded_cells", "must be at least 1");
@@ -38,52 +39,71 @@ void check_spec(const geometry::FinGeometry& fin, const FinGridSpec& s) {
 }
 
 // The section loop for unit chord, leading edge first, along the upper side to the trailing
-// edge and back along the lower side: (chord fraction, side) per point. A sharp trailing edge is
-// one point; a blunt one two, joined by the base.
+// edge and back along the lower side. Each entry is one outward grid line: its wall point
+// (chord fraction, side; `wall` is the entry that owns the point) and its direction in the
+// section plane. A sharp trailing edge emits a fan of lines from one wall point, turning from the
+// upper to the lower surface normal: the cells there are prisms on the trailing-edge line, and
+// the wall cells beside it stay orthogonal (a single bisector line would meet the wall at 82 deg
+// for NACA 0012). A blunt trailing edge is two points joined by the base.
 struct SectionLoop {
   std::vector<double> x;
   std::vector<int> side;
-  int m = 0;  // chordwise cells per side
+  std::vector<int> wall;
+  std::vector<Vec2> dir;
+  int m = 0;    // chordwise cells per side
+  int fan = 0;  // cells in the trailing-edge fan (sharp edges)
   [[nodiscard]] int size() const { return static_cast<int>(x.size()); }
-  [[nodiscard]] int upper(int k) const { return k; }  // chord node k on the upper side
-  [[nodiscard]] int lower(int k) const { return (size() - k) % size(); }
+  [[nodiscard]] int upper(int k) const { return k; }  // entry of chord node k, upper side
+  [[nodiscard]] int lower(int k) const {
+    if (k == 0) return 0;
+    if (fan == 0) return (size() - k) % size();
+    return k == m ? m : 2 * m + fan - k;
+  }
 };
 
-SectionLoop section_loop(int m, bool sharp) {
-  SectionLoop loop;
-  loop.m = m;
-  std::vector<double> xs;
-  for (int k = 0; k <= m; ++k) xs.push_back(0.5 * (1 - std::cos(std::numbers::pi * k / m)));
-  for (int k = 0; k <= m; ++k) {
-    loop.x.push_back(xs[static_cast<std::size_t>(k)]);
-    loop.side.push_back(1);
-  }
-  for (int k = sharp ? m - 1 : m; k >= 1; --k) {
-    loop.x.push_back(xs[static_cast<std::size_t>(k)]);
-    loop.side.push_back(-1);
-  }
-  return loop;
+Vec2 outward(const Vec2& a, const Vec2& b) {
+  const Vec2 t = (b - a).normalized();
+  return {-t.y(), t.x()};  // clockwise loop: outward is the left-hand normal
 }
 
-// Directions of the outward lines in the section plane: averaged segment normals, smoothed
-// round the loop so that the lines fan out around the trailing edge. Similar sections share them.
-std::vector<Vec2> line_directions(const geometry::NacaSection& sec, const SectionLoop& loop) {
-  const auto n = static_cast<std::size_t>(loop.size());
-  std::vector<Vec2> q(n), seg(n), dir(n);
-  for (std::size_t p = 0; p < n; ++p) q[p] = sec.surface(loop.x[p], loop.side[p]);
-  for (std::size_t p = 0; p < n; ++p) {
-    const Vec2 t = (q[(p + 1) % n] - q[p]).normalized();
-    seg[p] = Vec2(-t.y(), t.x());  // clockwise loop: outward is the left-hand normal
+SectionLoop section_loop(const geometry::NacaSection& sec, int m, int fan) {
+  SectionLoop loop;
+  loop.m = m;
+  loop.fan = sec.sharp_trailing_edge ? fan : 0;
+  const auto add = [&](double x, int side, int wall) {
+    loop.x.push_back(x);
+    loop.side.push_back(side);
+    loop.wall.push_back(wall < 0 ? loop.size() - 1 : wall);
+  };
+  std::vector<double> xs;
+  for (int k = 0; k <= m; ++k) xs.push_back(0.5 * (1 - std::cos(std::numbers::pi * k / m)));
+  for (int k = 0; k <= m; ++k) add(xs[static_cast<std::size_t>(k)], 1, -1);
+  for (int t = 1; t <= loop.fan; ++t) add(1.0, 1, m);  // the fan shares the trailing-edge point
+  for (int k = loop.fan > 0 ? m - 1 : m; k >= 1; --k) add(xs[static_cast<std::size_t>(k)], -1, -1);
+  // Directions: wall normals at each point (the average of its two segments' normals), and the
+  // fan's directions evenly spaced in angle between its two segments' normals.
+  const int n = loop.size();
+  const auto q = [&](int p) {
+    const auto pu = static_cast<std::size_t>((p + n) % n);
+    return sec.surface(loop.x[pu], loop.side[pu]);
+  };
+  const auto wall_of = [&](int p) { return loop.wall[static_cast<std::size_t>((p + n) % n)]; };
+  loop.dir.resize(static_cast<std::size_t>(n));
+  for (int p = 0; p < n; ++p) {
+    int prev = p - 1, next = p + 1;  // neighbouring distinct wall points
+    while (wall_of(prev) == wall_of(p)) --prev;
+    while (wall_of(next) == wall_of(p)) ++next;
+    const Vec2 before = outward(q(prev), q(p)), after = outward(q(p), q(next));
+    auto& d = loop.dir[static_cast<std::size_t>(p)];
+    if (loop.fan == 0 || wall_of(p) != m) {
+      d = (before + after).normalized();
+      continue;
+    }
+    const double t = static_cast<double>(p - m) / loop.fan;
+    const double a = std::atan2(before.y(), before.x()), b = std::atan2(after.y(), after.x());
+    d = Vec2(std::cos(a + t * (b - a)), std::sin(a + t * (b - a)));
   }
-  for (std::size_t p = 0; p < n; ++p) dir[p] = (seg[(p + n - 1) % n] + seg[p]).normalized();
-  constexpr int kSmoothing = 10;  // spreads the trailing-edge turn over about three cells
-  for (int it = 0; it < kSmoothing; ++it) {
-    auto next = dir;
-    for (std::size_t p = 0; p < n; ++p)
-      next[p] = (dir[(p + n - 1) % n] + 2 * dir[p] + dir[(p + 1) % n]).normalized();
-    dir = next;
-  }
-  return dir;
+  return loop;
 }
 
 // Stations along the post (rho, m from the hull axis): uniform inside the hull, clustered at
@@ -106,8 +126,7 @@ std::pair<std::vector<double>, int> span_stations(const geometry::FinGeometry& f
 Grid fin_grid(const geometry::FinGeometry& fin, const FinGridSpec& s) {
   check_spec(fin, s);
   const auto& sec = fin.set().section;
-  const SectionLoop loop = section_loop(s.chordwise_cells, sec.sharp_trailing_edge);
-  const auto dir = line_directions(sec, loop);
+  const SectionLoop loop = section_loop(sec, s.chordwise_cells, s.trailing_edge_fan);
   const auto dist = s.normal_cells > 0 ? stretched_nodes(0, s.extent, s.first_cell, s.normal_cells)
                                        : grown_nodes(0, s.extent, s.first_cell, s.growth);
   const auto [rho, k_tip] = span_stations(fin, s);
@@ -117,21 +136,28 @@ Grid fin_grid(const geometry::FinGeometry& fin, const FinGridSpec& s) {
 
   CellAssembler a;
   std::vector<std::pair<int, int>> tag;  // (j, k) of every point, for the patch classifier
+  std::vector<int> index;                // point of line p, layer j, station k
   for (int k = 0; k <= nk; ++k) {
     const double r = std::min(rho[static_cast<std::size_t>(k)], tip);
     const Eigen::Vector3d lift = (rho[static_cast<std::size_t>(k)] - r) * fin.span_axis();
     for (int j = 0; j <= nj; ++j) {
       for (int p = 0; p < np; ++p) {
         const auto pu = static_cast<std::size_t>(p);
+        if (j == 0 && loop.wall[pu] != p) {  // a fan line: its wall point exists already
+          index.push_back(index[index.size() - pu + static_cast<std::size_t>(loop.wall[pu])]);
+          continue;
+        }
         const Eigen::Vector3d wall = fin.point(r, loop.x[pu], loop.side[pu], 0.0);
-        const Eigen::Vector3d out =
-            dir[pu].x() * fin.chord_axis() + dir[pu].y() * fin.normal_axis();
-        a.add_point(wall + lift + dist[static_cast<std::size_t>(j)] * out);
+        const Vec2& d = loop.dir[pu];
+        const Eigen::Vector3d out = d.x() * fin.chord_axis() + d.y() * fin.normal_axis();
+        index.push_back(a.add_point(wall + lift + dist[static_cast<std::size_t>(j)] * out));
         tag.emplace_back(j, k);
       }
     }
   }
-  const auto P = [&](int p, int j, int k) { return (p % np) + np * (j + (nj + 1) * k); };
+  const auto P = [&](int p, int j, int k) {
+    return index[static_cast<std::size_t>((p % np) + np * (j + (nj + 1) * k))];
+  };
   const auto block = [&](auto corners, auto sample) {
     // One corner order per block, chosen on a representative cell; validate() checks all.
     const bool flip = !(a.signed_volume(sample) > 0);

@@ -29,6 +29,7 @@ void check_spec(const geometry::MyringProfile& profile, const HullGridSpec& s) {
   check(s.normal_cells >= 0, "normal_cells", "must not be negative (0: derive from growth)");
   check(s.growth >= 1, "growth", fmt::format("must be at least 1 (got {})", s.growth));
   check(s.rim_clustering >= 1, "rim_clustering", "must be at least 1");
+  check(s.rim_fan >= 1, "rim_fan", "must be at least 1");
   check(s.extent > 0, "extent", "must be positive");
   check(s.first_cell > 0, "first_cell", "must be positive");
   check(s.first_cell < profile.max_radius(), "first_cell",
@@ -66,13 +67,27 @@ class ArcLength {
   Vec2 last_ = Vec2::Zero();
 };
 
-// Wall nodes from the nose-face centre to the tail-face centre; every node on the exact profile.
-std::vector<Vec2> wall_nodes(const geometry::MyringProfile& p, const HullGridSpec& s) {
+// The wall-normal lines of the meridional grid: wall point (station, radius), the line that owns
+// that point (itself, or the rim line for a fan line), and the direction. Every wall point lies on
+// the exact profile; every direction is the wall normal there (the average of the two segment
+// normals), so the first cells are orthogonal to the wall. At each rim, where the flat end face
+// meets the curved hull at a convex corner (42 deg at the REMUS nose, 68 deg at the tail), a fan of
+// `rim_fan` lines turns from one face's normal to the other's: the fan cells are prisms on the rim
+// circle. For a convex profile the directions turn monotonically, so the lines never cross.
+struct WallLines {
+  std::vector<Vec2> point, dir;
+  std::vector<int> owner;
+  [[nodiscard]] int size() const { return static_cast<int>(point.size()); }
+};
+
+WallLines wall_lines(const geometry::MyringProfile& p, const HullGridSpec& s) {
   const double r_nose = p.radius(0), r_tail = p.radius(p.length());
   std::vector<Vec2> w;
+  std::vector<std::size_t> rims;  // indices (in w) of the two rim points
   // Cells shrink towards the rims, where the meridian turns a corner.
   for (double r : graded_nodes(0, r_nose, s.nose_face_cells, 1 / s.rim_clustering))
     w.emplace_back(0.0, r);
+  rims.push_back(w.size() - 1);
   const ArcLength arc(p);
   const auto sigma = graded_nodes(0, arc.total(), s.body_cells, s.rim_clustering, true);
   for (std::size_t k = 1; k + 1 < sigma.size(); ++k) {
@@ -80,31 +95,35 @@ std::vector<Vec2> wall_nodes(const geometry::MyringProfile& p, const HullGridSpe
     w.emplace_back(st, p.radius(st));
   }
   const auto tail = graded_nodes(0, r_tail, s.tail_face_cells, 1 / s.rim_clustering);
+  rims.push_back(w.size());
   for (auto it = tail.rbegin(); it != tail.rend(); ++it) w.emplace_back(p.length(), *it);
-  return w;
-}
 
-// Directions of the wall-normal lines: averaged segment normals, smoothed along the wall so that
-// the lines fan out gradually around the convex rims instead of leaving a gap. The end lines stay
-// on the axis. For a convex profile the directions turn monotonically, so the lines never cross.
-std::vector<Vec2> line_directions(const std::vector<Vec2>& w) {
-  const std::size_t n = w.size();
-  std::vector<Vec2> seg(n - 1), dir(n);
-  for (std::size_t i = 0; i + 1 < n; ++i) {
-    const Vec2 t = (w[i + 1] - w[i]).normalized();
-    seg[i] = Vec2(-t.y(), t.x());  // outward: the wall is traversed with the body on the right
+  const auto normal = [&](std::size_t a, std::size_t b) {
+    const Vec2 t = (w[b] - w[a]).normalized();
+    return Vec2(-t.y(), t.x());  // outward: the body lies on the right of the traversal
+  };
+  WallLines lines;
+  for (std::size_t i = 0; i < w.size(); ++i) {
+    const int here = lines.size();
+    if (i == 0 || i + 1 == w.size()) {  // the axis ahead of the nose and behind the tail
+      lines.point.push_back(w[i]);
+      lines.dir.emplace_back(i == 0 ? -1.0 : 1.0, 0.0);
+      lines.owner.push_back(here);
+      continue;
+    }
+    const Vec2 before = normal(i - 1, i), after = normal(i, i + 1);
+    const bool rim = i == rims[0] || i == rims[1];
+    const int count = rim ? s.rim_fan + 1 : 1;
+    const double a = std::atan2(before.y(), before.x()), b = std::atan2(after.y(), after.x());
+    for (int t = 0; t < count; ++t) {
+      const double angle = a + (b - a) * t / std::max(1, count - 1);
+      lines.point.push_back(w[i]);
+      lines.dir.push_back(rim ? Vec2(std::cos(angle), std::sin(angle))
+                              : Vec2((before + after).normalized()));
+      lines.owner.push_back(here);
+    }
   }
-  dir[0] = Vec2(-1, 0);
-  dir[n - 1] = Vec2(1, 0);
-  for (std::size_t i = 1; i + 1 < n; ++i) dir[i] = (seg[i - 1] + seg[i]).normalized();
-  constexpr int kSmoothing = 20;  // spreads a rim corner over about five cells on each side
-  for (int it = 0; it < kSmoothing; ++it) {
-    auto next = dir;
-    for (std::size_t i = 1; i + 1 < n; ++i)
-      next[i] = (dir[i - 1] + 2 * dir[i] + dir[i + 1]).normalized();
-    dir = next;
-  }
-  return dir;
+  return lines;
 }
 
 std::vector<double> normal_distances(const HullGridSpec& s) {
@@ -115,21 +134,25 @@ std::vector<double> normal_distances(const HullGridSpec& s) {
 
 Grid hull_grid(const geometry::MyringProfile& profile, double cb_station, const HullGridSpec& s) {
   check_spec(profile, s);
-  const auto wall = wall_nodes(profile, s);
-  const auto dir = line_directions(wall);
+  const WallLines lines = wall_lines(profile, s);
   const auto dist = normal_distances(s);
-  const int ni = static_cast<int>(wall.size()) - 1, nj = static_cast<int>(dist.size()) - 1;
+  const int ni = lines.size() - 1, nj = static_cast<int>(dist.size()) - 1;
   const int nt = s.circumferential;
 
   CellAssembler a;
   std::vector<int> layer;  // j of every point, for the patch classifier
-  // index[i][j]: first point of the ring (i, j); axis lines (i = 0, ni) have a single point.
+  // index[i][j]: first point of the ring (i, j); axis lines (i = 0, ni) have a single point, and
+  // the fan lines of a rim share the rim's wall ring.
   std::vector<std::vector<int>> index(static_cast<std::size_t>(ni + 1));
   for (int i = 0; i <= ni; ++i) {
+    const auto iu = static_cast<std::size_t>(i);
     const bool axis = i == 0 || i == ni;
     for (int j = 0; j <= nj; ++j) {
-      const auto iu = static_cast<std::size_t>(i);
-      const Vec2 q = wall[iu] + dist[static_cast<std::size_t>(j)] * dir[iu];
+      if (j == 0 && lines.owner[iu] != i) {
+        index[iu].push_back(index[static_cast<std::size_t>(lines.owner[iu])][0]);
+        continue;
+      }
+      const Vec2 q = lines.point[iu] + dist[static_cast<std::size_t>(j)] * lines.dir[iu];
       index[iu].push_back(static_cast<int>(a.points().size()));
       for (int k = 0; k < (axis ? 1 : nt); ++k) {
         // Half a step off the cardinal angles: no ring point in a cruciform fin's mid-plane.

@@ -119,7 +119,7 @@ TEST(HullGrid, CellsAreClosedPositiveAndPrismsLineTheAxis) {
   const Grid g = hull_grid(profile, remus().mass.cb_station, s);
   const GridGeometry geo = compute_geometry(g);
   ASSERT_NO_THROW(validate(g, geo));  // positive volumes, closure <= 1e-9 (round-off)
-  const int ni = s.nose_face_cells + s.body_cells + s.tail_face_cells;
+  const int ni = s.nose_face_cells + s.body_cells + s.tail_face_cells + 2 * s.rim_fan;
   EXPECT_EQ(g.cells, ni * s.normal_cells * s.circumferential);
   EXPECT_EQ(test::inward_boundary_faces(g, geo), 0);
   // Triangles only where the revolved wall-normal lines collapse on the axis: the j = const faces
@@ -130,7 +130,8 @@ TEST(HullGrid, CellsAreClosedPositiveAndPrismsLineTheAxis) {
     triangles += g.face_size(f) == 3;
     min_area = std::min(min_area, geo.face_area[static_cast<std::size_t>(f)].norm());
   }
-  EXPECT_EQ(triangles, 2 * (s.normal_cells + 1) * s.circumferential);
+  // The rim fans' first-layer cells add one triangle per fan line and sector on each rim.
+  EXPECT_EQ(triangles, 2 * (s.normal_cells + 1 + s.rim_fan) * s.circumferential);
   EXPECT_GT(min_area, 0.0);
   // Both patches are closed surfaces (the wall encloses the body, the outer boundary the grid).
   for (const auto& p : g.patches) {

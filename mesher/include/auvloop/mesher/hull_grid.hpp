@@ -4,11 +4,12 @@
 //
 // Meridional topology: one structured block wrapped around the half-profile, from the nose-face
 // centre on the axis, up the flat nose face, along the curved hull, down the flat tail face to the
-// tail-face centre on the axis (index i), and outward along straight lines from the wall (index j)
-// to `extent`. The two end lines lie on the axis ahead of the nose and behind the tail, so the
-// revolved cells next to them are prisms (their axis edge collapses), never zero-area faces.
-// Wall points lie exactly on the analytic profile. Patches: "hull" (wall: nose face, curved hull,
-// tail face) and "hull_overset" (the outer boundary).
+// tail-face centre on the axis (index i), and outward along straight wall-normal lines (index j)
+// to `extent`, with a fan of lines round each rim (the convex corner between end face and hull).
+// The two end lines lie on the axis ahead of the nose and behind the tail, so the revolved cells
+// next to them are prisms (their axis edge collapses), never zero-area faces. Wall points lie
+// exactly on the analytic profile. Patches: "hull" (wall: nose face, curved hull, tail face) and
+// "hull_overset" (the outer boundary).
 #pragma once
 
 #include "auvloop/geometry/myring.hpp"
@@ -26,6 +27,7 @@ struct HullGridSpec {
   double growth = 1.2;           // largest ratio of neighbouring wall-normal sizes (normal_cells 0)
   double extent = 0.08;          // m, distance from the wall to the outer boundary
   double rim_clustering = 1.06;  // cell growth away from the nose and tail rims along the wall
+  int rim_fan = 6;               // lines fanning round each rim (end face to curved hull)
 };
 
 // The grid frame is the body frame (origin at CB, x forward); throws std::invalid_argument naming
