@@ -19,5 +19,6 @@ void register_geometry_commands(CLI::App& app);
 // Commands that set a non-zero exit code without throwing write it to exit_code.
 void register_run_commands(CLI::App& app, int& exit_code);
 void register_optimize_command(CLI::App& app, int& exit_code);
+void register_mesh_command(CLI::App& app, int& exit_code);
 
 }  // namespace auvloop::cli

@@ -32,6 +32,7 @@ int main(int argc, char** argv) {
   cli::register_geometry_commands(app);
   cli::register_run_commands(app, exit_code);
   cli::register_optimize_command(app, exit_code);
+  cli::register_mesh_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -145,9 +145,10 @@ void read_background(input::Table t, BackgroundSpec& b) {
 }
 }  // namespace
 
-MeshSettings read_mesh_settings(input::Table mesh, const geometry::Vehicle& v) {
-  const std::string preset = mesh.choice_or("preset", "medium", {"coarse", "medium", "fine"});
-  MeshSettings s = mesh_preset(preset, v);
+MeshSettings read_mesh_settings(input::Table mesh, const geometry::Vehicle& v,
+                                std::string_view preset_override) {
+  const std::string from_file = mesh.choice_or("preset", "medium", {"coarse", "medium", "fine"});
+  MeshSettings s = mesh_preset(preset_override.empty() ? from_file : preset_override, v);
   s.design_speed = mesh.number_or("design_speed", s.design_speed, input::Range::positive(), "m/s");
   s.kinematic_viscosity = mesh.number_or("kinematic_viscosity", s.kinematic_viscosity,
                                          input::Range::positive(), "m^2/s");

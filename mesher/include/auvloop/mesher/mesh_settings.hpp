@@ -43,8 +43,10 @@ double flat_plate_wall_distance(double yplus, double speed, double nu, double le
 double flat_plate_yplus(double height, double speed, double nu, double length);
 
 // Reads a [mesh] table (keys in docs/mesher.md) on top of its preset; problems go to the table's
-// document with file:line:column. Calls mesh.finish().
-MeshSettings read_mesh_settings(input::Table mesh, const geometry::Vehicle& vehicle);
+// document with file:line:column. Calls mesh.finish(). A non-empty `preset` (from the command
+// line) replaces the file's preset; the file's other settings still apply on top of it.
+MeshSettings read_mesh_settings(input::Table mesh, const geometry::Vehicle& vehicle,
+                                std::string_view preset = {});
 
 // Throws std::invalid_argument naming the setting (negative counts, a first cell taller than the
 // hull radius, a deflection beyond the fin set's max_deflection, ...).
