@@ -113,7 +113,17 @@ std::pair<std::vector<double>, int> span_stations(const geometry::FinGeometry& f
   const double inner = fin.inner_radius(), root = fin.set().root_radius();
   const double tip = fin.set().tip_radius;
   auto rho = graded_nodes(inner, root, s.embedded_cells);
-  const auto down = stretched_nodes(0, tip - root, s.first_cell, s.span_cells);
+  // Down from the tip: from the tip's first cell, growing by `growth` until the cells reach the
+  // uniform size (tip - root) / span_cells, then uniform to the root. (Stretching span_cells
+  // cells from a y+ first cell alone would leave cells of several centimetres at the root.)
+  const double uniform = (tip - root) / s.span_cells;
+  std::vector<double> down{0.0};
+  for (double h = s.first_cell; h < uniform && down.back() + h < 0.5 * (tip - root); h *= s.growth)
+    down.push_back(down.back() + h);
+  const double rest = (tip - root) - down.back();
+  const int n_rest = std::max(1, static_cast<int>(std::ceil(rest / uniform - 1e-9)));
+  const double from = down.back();
+  for (int k = 1; k <= n_rest; ++k) down.push_back(from + rest * k / n_rest);
   for (auto it = down.rbegin() + 1; it != down.rend(); ++it) rho.push_back(tip - *it);
   const int k_tip = static_cast<int>(rho.size()) - 1;
   const auto up = s.cap_cells > 0 ? stretched_nodes(0, s.cap_height, s.first_cell, s.cap_cells)
