@@ -4,7 +4,9 @@
 #include <chrono>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <numbers>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -16,6 +18,7 @@
 #include "auvloop/mesher/grid_system.hpp"
 #include "auvloop/mesher/mesh_report.hpp"
 #include "auvloop/mesher/mesh_settings.hpp"
+#include "auvloop/mesher/overset.hpp"
 #include "cli.hpp"
 
 namespace auvloop::cli {
@@ -30,6 +33,7 @@ struct MeshOptions {
   std::string out;
   bool openfoam = false;
   bool json = false;
+  bool no_overset = false;
 };
 
 struct Inputs {
@@ -81,16 +85,39 @@ int mesh_command(const MeshOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
   Inputs in = read_inputs(o);
   in.settings.fin_deflections = deflections(o, in);
-  const mesher::GridSystem sys = mesher::build_grid_system(in.vehicle, in.settings);
-  const mesher::MeshReport report = mesher::mesh_report(sys, in.settings, in.vehicle);
+  mesher::GridSystem sys = mesher::build_grid_system(in.vehicle, in.settings);
+  mesher::MeshReport report = mesher::mesh_report(sys, in.settings, in.vehicle);
+  std::optional<mesher::Assembly> assembly;
+  if (!o.no_overset) {
+    mesher::OversetAssembler assembler(sys, in.vehicle);
+    assembly = assembler.assemble(sys.fin_deflections);
+    for (std::size_t g = 0; g < report.grids.size(); ++g) {
+      const auto& ga = assembly->grids[g];
+      report.grids[g].assembled = true;
+      report.grids[g].overset = {
+          ga.count(mesher::CellStatus::active), ga.count(mesher::CellStatus::fringe),
+          ga.count(mesher::CellStatus::hole), ga.count(mesher::CellStatus::orphan)};
+    }
+  }
   // Every grid is checked before anything is written: a bad cell stops the command with the
   // cell and the reason instead of leaving a broken grid on disk.
   std::vector<std::map<std::string, std::vector<double>>> fields;
-  for (const mesher::Grid* g : sys.grids()) {
-    const auto geo = mesher::compute_geometry(*g);
-    mesher::validate(*g, geo);
+  for (std::size_t g = 0; g < sys.grids().size(); ++g) {
+    const mesher::Grid& grid = *sys.grids()[g];
+    const auto geo = mesher::compute_geometry(grid);
+    mesher::validate(grid, geo);
     fields.push_back({{"volume", geo.cell_volume},
-                      {"non_orthogonality", mesher::cell_non_orthogonality(*g, geo)}});
+                      {"non_orthogonality", mesher::cell_non_orthogonality(grid, geo)}});
+    if (assembly) {
+      const auto& ga = assembly->grids[g];
+      std::vector<double> status, donor;
+      for (std::size_t c = 0; c < ga.status.size(); ++c) {
+        status.push_back(static_cast<double>(ga.status[c]));
+        donor.push_back(ga.donor_grid[c]);
+      }
+      fields.back()["status"] = std::move(status);     // 0 active, 1 fringe, 2 hole, 3 orphan
+      fields.back()["donor_grid"] = std::move(donor);  // grid index in mesh.vtm, -1 none
+    }
   }
   fs::create_directories(o.out);
   mesher::write_vtm(o.out, "mesh", sys.grids(), fields);
@@ -131,14 +158,17 @@ void register_mesh_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--openfoam", o->openfoam,
                 "Also export every grid as an OpenFOAM polyMesh (DIR/openfoam/GRID)");
   cmd->add_flag("--json", o->json, "Print the mesh report as JSON instead of a table");
+  cmd->add_flag("--no-overset", o->no_overset, "Skip the overset assembly (grids only)");
   cmd->footer(
       "Presets: coarse (~50 k cells, y+ 30), medium (~250 k, y+ 5), fine (~1.3 M, y+ 1); first\n"
       "cells from y+ at the design speed (1.54 m/s) by a flat-plate skin-friction estimate.\n"
-      "Writes DIR/mesh.vtm with one .vtu per grid (open mesh.vtm in ParaView; cell fields volume\n"
-      "and non_orthogonality), DIR/GRID.agrid (auvloop's binary grids) and DIR/mesh-report.json,\n"
-      "and prints the report: cells, smallest volume, worst non-orthogonality and skewness,\n"
-      "aspect ratio and estimated y+ of the first cells per grid. Every grid is checked (closed,\n"
-      "positive cells) before anything is written.\n"
+      "Assembles the overset system at the fin deflections (hole cutting, fringes, donors).\n"
+      "Writes DIR/mesh.vtm with one .vtu per grid (open mesh.vtm in ParaView; cell fields volume,\n"
+      "non_orthogonality, status 0 active / 1 fringe / 2 hole / 3 orphan, donor_grid),\n"
+      "DIR/GRID.agrid (auvloop's binary grids) and DIR/mesh-report.json, and prints the report:\n"
+      "cells, smallest volume, worst non-orthogonality and skewness, aspect ratio, estimated y+\n"
+      "of the first cells, active, fringe and orphan counts per grid. Every grid is checked\n"
+      "(closed, positive cells) before anything is written.\n"
       "Examples:\n"
       "  auvloop mesh --preset coarse --out out/mesh\n"
       "  auvloop mesh examples/heading-step.toml --fin-deflection 30 --out out/mesh30");

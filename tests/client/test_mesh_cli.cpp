@@ -29,6 +29,9 @@ TEST(MeshCli, WritesGridsAndReport) {
   EXPECT_EQ(report["total_cells"].get<long long>(), total);
   EXPECT_EQ(report["grids"].size(), 6U);  // hull, four fins, background
   EXPECT_DOUBLE_EQ(report["fin_deflections_deg"][0].get<double>(), 30.0);
+  // The overset assembly ran: each component grid has fringe cells round its outer boundary.
+  for (const auto& g : report["grids"])
+    EXPECT_GT(g["overset"]["fringe"].get<int>(), 0) << g["name"];
   std::ifstream vtm(out / "mesh.vtm");
   const std::string text((std::istreambuf_iterator<char>(vtm)), {});
   EXPECT_THAT(text, HasSubstr("file=\"upper_rudder.vtu\""));
