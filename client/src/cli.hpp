@@ -30,5 +30,6 @@ struct ConnectOptions;
 // `auvloop optimize OPT.toml --daemon`: submits to the daemon (job_commands.cpp).
 int optimize_on_daemon(const ConnectOptions& co, const std::string& file, bool wait, bool json);
 void register_validate_command(CLI::App& app, int& exit_code);
+void register_mesh_command(CLI::App& app, int& exit_code);
 
 }  // namespace auvloop::cli

@@ -38,6 +38,7 @@ int main(int argc, char** argv) {
   cli::register_job_commands(app, exit_code);
   cli::register_results_commands(app, exit_code);
   cli::register_validate_command(app, exit_code);
+  cli::register_mesh_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -51,6 +51,25 @@ std::vector<double> grown_nodes(double a, double b, double first, double max_rat
   return graded_nodes(a, b, n, 0.5 * (lo + hi));
 }
 
+std::vector<double> stretched_nodes(double a, double b, double first, int n) {
+  const double length = b - a;
+  if (n < 1 || !(length > 0) || !(first > 0) || !(first < length)) {
+    throw std::invalid_argument("stretched_nodes: need n >= 1, b > a and 0 < first < b - a");
+  }
+  if (n == 1) return {a, b};
+  // first_cell(r) = length (r - 1) / (r^n - 1) falls monotonically with r; bisect on log r.
+  auto first_cell = [&](double log_r) {
+    return std::abs(log_r) < 1e-14 ? length / n
+                                   : length * std::expm1(log_r) / std::expm1(n * log_r);
+  };
+  double lo = -5.0, hi = 5.0;  // ratios from 0.007 to 148: far beyond any usable grading
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (first_cell(mid) > first ? lo : hi) = mid;
+  }
+  return graded_nodes(a, b, n, std::exp(0.5 * (lo + hi)));
+}
+
 namespace {
 // Coarse - fine - coarse: growth away from [lo, hi] on both sides.
 std::vector<double> clustered(double a, double lo, double hi, double b, double h, double growth) {

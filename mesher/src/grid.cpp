@@ -130,13 +130,20 @@ GridQuality measure_quality(const Grid& g, const GridGeometry& geo) {
       // Skewness: distance from the face centre to where the centre line crosses the face.
       const Eigen::Vector3d cross =
           geo.cell_centre[P] + d * (S.dot(geo.face_centre[fs] - geo.cell_centre[P]) / S.dot(d));
-      q.max_skewness = std::max(q.max_skewness, (geo.face_centre[fs] - cross).norm() / d.norm());
+      const double skew = (geo.face_centre[fs] - cross).norm() / d.norm();
+      if (skew > q.max_skewness) {
+        q.max_skewness = skew;
+        q.worst_skewed_face = f;
+      }
     } else {
       d = geo.face_centre[fs] - geo.cell_centre[P];
     }
     const double c = std::clamp(S.dot(d) / (a * d.norm()), -1.0, 1.0);
-    q.max_non_orthogonality =
-        std::max(q.max_non_orthogonality, std::acos(c) * 180 / std::numbers::pi);
+    const double angle = std::acos(c) * 180 / std::numbers::pi;
+    if (angle > q.max_non_orthogonality) {
+      q.max_non_orthogonality = angle;
+      q.worst_non_orthogonal_face = f;
+    }
   }
   q.min_volume = 1e300;
   for (std::size_t c = 0; c < nc; ++c) {

@@ -152,4 +152,21 @@ void write_vtu(const fs::path& file, const Grid& g,
   write_file_atomically(file, s);
 }
 
+void write_vtm(const fs::path& dir, const std::string& name, const std::vector<const Grid*>& grids,
+               const std::vector<std::map<std::string, std::vector<double>>>& cell_fields) {
+  std::string vtm =
+      "<?xml version=\"1.0\"?>\n"
+      "<VTKFile type=\"vtkMultiBlockDataSet\" version=\"1.0\" byte_order=\"LittleEndian\">\n"
+      "  <vtkMultiBlockDataSet>\n";
+  for (std::size_t i = 0; i < grids.size(); ++i) {
+    const std::string file = grids[i]->name + ".vtu";
+    write_vtu(dir / file, *grids[i],
+              i < cell_fields.size() ? cell_fields[i] : decltype(cell_fields[0]){});
+    vtm += fmt::format("    <DataSet index=\"{}\" name=\"{}\" file=\"{}\"/>\n", i, grids[i]->name,
+                       file);
+  }
+  vtm += "  </vtkMultiBlockDataSet>\n</VTKFile>\n";
+  write_file_atomically(dir / (name + ".vtm"), vtm);
+}
+
 }  // namespace auvloop::mesher

@@ -164,3 +164,17 @@ TEST(Grid, BackgroundBoxHasThePapersExtents) {
   EXPECT_THAT(quality_table(g, q), HasSubstr("grid background:"));
   std::printf("%s", quality_table(g, q).c_str());
 }
+
+TEST(Grid, StretchedNodesHitTheFirstCellAndTheEnd) {
+  for (const double first : {1e-5, 0.01, 0.3}) {  // ratios above, near and below one
+    const auto x = stretched_nodes(0.5, 1.5, first, 20);
+    ASSERT_EQ(x.size(), 21U);
+    EXPECT_NEAR(x[1] - x[0], first, 1e-9 * first);
+    EXPECT_DOUBLE_EQ(x.back(), 1.5);
+    const double r = (x[2] - x[1]) / (x[1] - x[0]);
+    for (std::size_t i = 2; i + 1 < x.size(); ++i)
+      EXPECT_NEAR((x[i] - x[i - 1]) / (x[i - 1] - x[i - 2]), r, 1e-9);
+  }
+  EXPECT_THROW(stretched_nodes(0, 1, 2.0, 5), std::invalid_argument);
+  EXPECT_THROW(stretched_nodes(0, 1, 0.1, 0), std::invalid_argument);
+}

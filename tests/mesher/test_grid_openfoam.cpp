@@ -11,8 +11,10 @@
 
 #include <gtest/gtest.h>
 
+#include "auvloop/geometry/myring.hpp"
 #include "auvloop/mesher/generators.hpp"
 #include "auvloop/mesher/grid_io.hpp"
+#include "auvloop/mesher/grid_system.hpp"
 #include "temp_dir.hpp"
 
 using namespace auvloop::mesher;
@@ -29,6 +31,24 @@ std::string check_mesh(const std::filesystem::path& dir) {
   while (std::fgets(buf.data(), buf.size(), pipe) != nullptr) out += buf.data();
   pclose(pipe);
   return out;
+}
+
+void write_case(const auvloop::test::TempDir& tmp, const Grid& g) {
+  write_openfoam_polymesh(tmp.path(), g);
+  tmp.write("system/controlDict",
+            "FoamFile { version 2.0; format ascii; class dictionary; object controlDict; }\n"
+            "application checkMesh; startFrom startTime; startTime 0; stopAt endTime; endTime 1; "
+            "deltaT 1;\n"
+            "writeControl timeStep; writeInterval 1;\n");
+  tmp.write("system/fvSchemes",
+            "FoamFile { version 2.0; format ascii; class dictionary; object fvSchemes; }\n"
+            "ddtSchemes { default Euler; } gradSchemes { default Gauss linear; } divSchemes { "
+            "default none; }\n"
+            "laplacianSchemes { default Gauss linear corrected; } interpolationSchemes { default "
+            "linear; }\n"
+            "snGradSchemes { default corrected; }\n");
+  tmp.write("system/fvSolution",
+            "FoamFile { version 2.0; format ascii; class dictionary; object fvSolution; }\n");
 }
 
 double number_after(const std::string& text, const std::string& label) {
@@ -52,21 +72,7 @@ TEST(GridOpenFoam, CheckMeshAgrees) {
     }
   }
   auvloop::test::TempDir tmp;
-  write_openfoam_polymesh(tmp.path(), g);
-  tmp.write("system/controlDict",
-            "FoamFile { version 2.0; format ascii; class dictionary; object controlDict; }\n"
-            "application checkMesh; startFrom startTime; startTime 0; stopAt endTime; endTime 1; "
-            "deltaT 1;\n"
-            "writeControl timeStep; writeInterval 1;\n");
-  tmp.write("system/fvSchemes",
-            "FoamFile { version 2.0; format ascii; class dictionary; object fvSchemes; }\n"
-            "ddtSchemes { default Euler; } gradSchemes { default Gauss linear; } divSchemes { "
-            "default none; }\n"
-            "laplacianSchemes { default Gauss linear corrected; } interpolationSchemes { default "
-            "linear; }\n"
-            "snGradSchemes { default corrected; }\n");
-  tmp.write("system/fvSolution",
-            "FoamFile { version 2.0; format ascii; class dictionary; object fvSolution; }\n");
+  write_case(tmp, g);
   const std::string out = check_mesh(tmp.path());
   ASSERT_NE(out.find("Mesh OK."), std::string::npos) << out;
   EXPECT_NE(out.find("Upper triangular ordering OK."), std::string::npos);
@@ -78,4 +84,30 @@ TEST(GridOpenFoam, CheckMeshAgrees) {
       "%.6g)\n",
       number_after(out, "Mesh non-orthogonality Max:"), q.max_non_orthogonality,
       number_after(out, "Total volume ="), q.total_volume);
+}
+
+// The component grids of the coarse preset: checkMesh finds each one OK (closed patches of the
+// hull grid included) and agrees with auvloop on the total volume and the worst
+// non-orthogonality.
+TEST(GridOpenFoam, CheckMeshAcceptsTheComponentGrids) {
+  if (!std::filesystem::exists(kBashrc))
+    GTEST_SKIP() << "OpenFOAM (Debian package openfoam) is not installed";
+  const auto v = auvloop::geometry::preset_vehicle("remus100");
+  const GridSystem sys = build_grid_system(v, mesh_preset("coarse", v));
+  for (const Grid* g : {&sys.hull, &sys.fins.front()}) {
+    auvloop::test::TempDir tmp;
+    write_case(tmp, *g);
+    const std::string out = check_mesh(tmp.path());
+    EXPECT_NE(out.find("Mesh OK."), std::string::npos) << g->name << "\n" << out;
+    const GridQuality q = measure_quality(*g, compute_geometry(*g));
+    // checkMesh prints 6 significant digits.
+    EXPECT_NEAR(number_after(out, "Total volume ="), q.total_volume, 1e-5 * q.total_volume);
+    EXPECT_NEAR(number_after(out, "Mesh non-orthogonality Max:"), q.max_non_orthogonality, 1e-3);
+    std::printf(
+        "checkMesh %s: %s, max non-orthogonality %.4g deg (auvloop %.4g), max skewness "
+        "%.4g (OpenFOAM's measure), total volume %.6g m^3 (auvloop %.6g)\n",
+        g->name.c_str(), out.find("Mesh OK.") != std::string::npos ? "Mesh OK" : "FAILED",
+        number_after(out, "Mesh non-orthogonality Max:"), q.max_non_orthogonality,
+        number_after(out, "Max skewness ="), number_after(out, "Total volume ="), q.total_volume);
+  }
 }

@@ -26,6 +26,11 @@ struct BoxPatches {
 // most `max_ratio`; the ratio is solved so that the first cell is exactly `first`.
 std::vector<double> grown_nodes(double a, double b, double first, double max_ratio);
 
+// n cells from a to b, the first (at a) exactly `first`, sizes in geometric progression (the
+// ratio, above or below one, is solved for). Throws std::invalid_argument when n < 1, b <= a or
+// first is not in (0, b - a).
+std::vector<double> stretched_nodes(double a, double b, double first, int n);
+
 // The background box of the overset system (issue 6): the paper's extents by default (inlet 3 L
 // ahead of the bow, outlet 5 L behind the stern, 1.4 L from the axis to each side), uniform
 // spacing `spacing` in a near-body region that also covers the propeller disk and `wake` behind

@@ -86,11 +86,13 @@ struct GridQuality {
   int cells = 0, faces = 0, internal_faces = 0, points = 0;
   double total_volume = 0;
   double min_volume = 0;
-  double max_closure_error = 0;      // max over cells of |sum S| / sum |S|
-  double max_non_orthogonality = 0;  // deg: angle between S and the owner-neighbour vector
-  double max_skewness = 0;           // distance from the face centre to the centre line / |d|
-  double max_aspect_ratio = 0;       // of a cell: max face area / min face area
-  int worst_cell = -1;               // the cell with the smallest volume
+  double max_closure_error = 0;        // max over cells of |sum S| / sum |S|
+  double max_non_orthogonality = 0;    // deg: angle between S and the owner-neighbour vector
+  double max_skewness = 0;             // distance from the face centre to the centre line / |d|
+  double max_aspect_ratio = 0;         // of a cell: max face area / min face area
+  int worst_cell = -1;                 // the cell with the smallest volume
+  int worst_non_orthogonal_face = -1;  // where max_non_orthogonality occurs
+  int worst_skewed_face = -1;          // where max_skewness occurs
 };
 
 GridQuality measure_quality(const Grid& g, const GridGeometry& geo);

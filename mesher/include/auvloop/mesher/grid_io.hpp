@@ -19,4 +19,10 @@ void write_openfoam_polymesh(const std::filesystem::path& case_dir, const Grid& 
 void write_vtu(const std::filesystem::path& file, const Grid& g,
                const std::map<std::string, std::vector<double>>& cell_fields = {});
 
+// A VTK multi-block file (.vtm) listing one .vtu per grid, so that ParaView opens the whole
+// overset system at once: writes DIR/NAME.vtm and DIR/<grid name>.vtu with each grid's fields.
+void write_vtm(const std::filesystem::path& dir, const std::string& name,
+               const std::vector<const Grid*>& grids,
+               const std::vector<std::map<std::string, std::vector<double>>>& cell_fields);
+
 }  // namespace auvloop::mesher

@@ -1,0 +1,65 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Mesher timings: building each preset's grid system, a full overset assembly, and the
+// incremental update after a 0.5 deg rotation of every fin (the per-time-step cost when the
+// rudders move). Run: build/release/bench/bench_mesher
+#include <numbers>
+
+#include <benchmark/benchmark.h>
+
+#include "auvloop/mesher/grid_system.hpp"
+#include "auvloop/mesher/overset.hpp"
+
+namespace {
+using namespace auvloop;
+
+const geometry::Vehicle& remus() {
+  static const geometry::Vehicle v = geometry::preset_vehicle("remus100");
+  return v;
+}
+
+const char* preset(const benchmark::State& state) {
+  static const char* names[] = {"coarse", "medium", "fine"};
+  return names[state.range(0)];
+}
+
+void BuildPreset(benchmark::State& state) {
+  const auto settings = mesher::mesh_preset(preset(state), remus());
+  long long cells = 0;
+  for (auto _ : state) {
+    const auto sys = mesher::build_grid_system(remus(), settings);
+    cells = sys.total_cells();
+    benchmark::DoNotOptimize(cells);
+  }
+  state.SetLabel(preset(state));
+  state.counters["cells"] = static_cast<double>(cells);
+}
+BENCHMARK(BuildPreset)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
+
+void FullAssembly(benchmark::State& state) {
+  auto sys = mesher::build_grid_system(remus(), mesher::mesh_preset(preset(state), remus()));
+  mesher::OversetAssembler assembler(sys, remus());
+  const std::vector<double> d(sys.fins.size(), 10 * std::numbers::pi / 180);
+  for (auto _ : state) benchmark::DoNotOptimize(assembler.assemble(d));
+  state.SetLabel(preset(state));
+}
+BENCHMARK(FullAssembly)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
+
+void UpdateHalfDegree(benchmark::State& state) {
+  auto sys = mesher::build_grid_system(remus(), mesher::mesh_preset(preset(state), remus()));
+  mesher::OversetAssembler assembler(sys, remus());
+  const double deg = std::numbers::pi / 180;
+  const mesher::Assembly start = assembler.assemble(std::vector<double>(sys.fins.size(), 10 * deg));
+  int visited = 0;
+  for (auto _ : state) {
+    const auto a = assembler.update(start, std::vector<double>(sys.fins.size(), 10.5 * deg));
+    visited = a.cells_visited;
+    benchmark::DoNotOptimize(a);
+  }
+  state.SetLabel(preset(state));
+  state.counters["cells_examined"] = visited;
+  state.counters["cells"] = static_cast<double>(sys.total_cells());
+}
+BENCHMARK(UpdateHalfDegree)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
+}  // namespace
+
+BENCHMARK_MAIN();

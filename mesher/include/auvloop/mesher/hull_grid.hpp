@@ -1,0 +1,37 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The body-fitted hull grid: a 2D meridional grid around the Myring profile revolved about the
+// body x axis (docs/mesher.md).
+//
+// Meridional topology: one structured block wrapped around the half-profile, from the nose-face
+// centre on the axis, up the flat nose face, along the curved hull, down the flat tail face to the
+// tail-face centre on the axis (index i), and outward along straight wall-normal lines (index j)
+// to `extent`, with a fan of lines round each rim (the convex corner between end face and hull).
+// The two end lines lie on the axis ahead of the nose and behind the tail, so the revolved cells
+// next to them are prisms (their axis edge collapses), never zero-area faces. Wall points lie
+// exactly on the analytic profile. Patches: "hull" (wall: nose face, curved hull, tail face) and
+// "hull_overset" (the outer boundary).
+#pragma once
+
+#include "auvloop/geometry/myring.hpp"
+#include "auvloop/mesher/grid.hpp"
+
+namespace auvloop::mesher {
+
+struct HullGridSpec {
+  int nose_face_cells = 6;       // along the flat nose face, axis to rim
+  int body_cells = 64;           // along the curved profile, nose rim to tail rim
+  int tail_face_cells = 4;       // along the flat tail face, rim to axis
+  int circumferential = 32;      // around the axis; a multiple of 4 (cruciform symmetry)
+  int normal_cells = 0;          // wall to outer boundary; 0: the fewest that keep `growth`
+  double first_cell = 5e-4;      // m, wall-normal height of the first cell
+  double growth = 1.2;           // largest ratio of neighbouring wall-normal sizes (normal_cells 0)
+  double extent = 0.08;          // m, distance from the wall to the outer boundary
+  double rim_clustering = 1.06;  // cell growth away from the nose and tail rims along the wall
+  int rim_fan = 6;               // lines fanning round each rim (end face to curved hull)
+};
+
+// The grid frame is the body frame (origin at CB, x forward); throws std::invalid_argument naming
+// the offending setting when the spec is unusable.
+Grid hull_grid(const geometry::MyringProfile& profile, double cb_station, const HullGridSpec& spec);
+
+}  // namespace auvloop::mesher

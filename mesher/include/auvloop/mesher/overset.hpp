@@ -1,0 +1,83 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Overset assembly of a grid system (docs/mesher.md): which cells solve (active), which take
+// their values from another grid (fringe, with donor cells and weights), which are out of the
+// fluid or covered by a better grid (hole), and which found no donor (orphan).
+//
+// Algorithm, grids in priority order (fins, then hull, then background: the finest, nearest-wall
+// grid wins):
+//   1. wall holes: cells whose centre lies inside the hull or a fin (CGAL inside tests,
+//      geometry::SurfaceQuery, on the deflected surfaces);
+//   2. covered holes: a cell whose centre lies in an active cell of a higher-priority grid at
+//      least `overlap_cells` of its own sizes deep inside that grid's active region;
+//   3. fringe: `fringe_layers` layers of cells next to holes and, for component grids, next to the
+//      outer (overset) boundary;
+//   4. donors: the cell of another grid (priority order) that contains the fringe cell's centre,
+//      found by a walk through the cells from the nearest cell centre (a k-d tree), or from the
+//      previous donor in an incremental update; it must be active, as must the face neighbours
+//      that complete the stencil. Weights: the minimum (inverse-distance weighted) norm solution of
+//      sum w = 1, sum w x = x_fringe, so linear fields are interpolated exactly.
+// Invariants of a result: no donor cell is anything but active; weights sum to one.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "auvloop/geometry/surface.hpp"
+#include "auvloop/mesher/grid_system.hpp"
+
+namespace auvloop::mesher {
+
+enum class CellStatus : std::uint8_t { active = 0, fringe = 1, hole = 2, orphan = 3 };
+const char* to_string(CellStatus s);
+
+struct GridAssembly {
+  std::vector<CellStatus> status;
+  // Per fringe cell (CSR over cells; empty for the others): donor grid, donor cells, weights.
+  std::vector<int> donor_grid;       // per cell, -1 if none
+  std::vector<int> donor_cell;       // per cell: the cell containing the centre, -1 if none
+  std::vector<int> stencil_offsets;  // cells + 1
+  std::vector<int> stencil_cells;
+  std::vector<double> stencil_weights;
+  [[nodiscard]] int count(CellStatus s) const;
+};
+
+struct Assembly {
+  std::vector<double> fin_deflections;  // rad
+  std::vector<GridAssembly> grids;      // GridSystem::grids() order
+  double seconds = 0;                   // wall time of the assembly
+  int cells_visited = 0;                // cells whose status was (re)computed
+};
+
+struct OversetSettings {
+  int fringe_layers = 2;  // second-order stencils reach two cells
+  // A cell is covered only this many of its own sizes inside the better grid's active region:
+  // its two fringe layers (2 sizes) then find active donors there, and the better grid's fringe
+  // finds active donors among this grid's cells (the 0.87 of a size to the farthest corner).
+  double overlap_cells = 3.5;
+  double surface_edge = 0.004;  // m, triangulation of hull and fins for the inside tests
+};
+
+class OversetAssembler {
+ public:
+  OversetAssembler(GridSystem& system, const geometry::Vehicle& vehicle,
+                   OversetSettings settings = {});
+  OversetAssembler(OversetAssembler&&) noexcept;
+  ~OversetAssembler();
+
+  // Full assembly with the fins at `deflections` (rad, one per fin); moves the fin grids'
+  // placements of the system given to the constructor.
+  Assembly assemble(const std::vector<double>& deflections);
+  // After a small fin rotation: only cells near the fins are re-examined, and donors are found by
+  // walking from the previous ones. Gives the same statuses as a full assembly (tested).
+  Assembly update(const Assembly& previous, const std::vector<double>& deflections);
+
+  // Body-frame centre of a cell (placement applied).
+  [[nodiscard]] Eigen::Vector3d centre(int grid, int cell) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace auvloop::mesher

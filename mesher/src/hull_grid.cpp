@@ -1,0 +1,194 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "auvloop/mesher/hull_grid.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "auvloop/mesher/cell_assembly.hpp"
+#include "auvloop/mesher/generators.hpp"
+
+namespace auvloop::mesher {
+
+namespace {
+using Vec2 = Eigen::Vector2d;  // (station, radius) in the meridional half-plane
+
+void check(bool ok, const char* setting, const std::string& why) {
+  if (!ok) throw std::invalid_argument(fmt::format("hull grid: {} {}", setting, why));
+}
+
+void check_spec(const geometry::MyringProfile& profile, const HullGridSpec& s) {
+  check(s.nose_face_cells >= 1, "nose_face_cells", "must be at least 1");
+  check(s.tail_face_cells >= 1, "tail_face_cells", "must be at least 1");
+  check(s.body_cells >= 2, "body_cells", "must be at least 2");
+  check(s.circumferential >= 4 && s.circumferential % 4 == 0, "circumferential",
+        fmt::format("must be a positive multiple of 4 (got {})", s.circumferential));
+  check(s.normal_cells >= 0, "normal_cells", "must not be negative (0: derive from growth)");
+  check(s.growth >= 1, "growth", fmt::format("must be at least 1 (got {})", s.growth));
+  check(s.rim_clustering >= 1, "rim_clustering", "must be at least 1");
+  check(s.rim_fan >= 1, "rim_fan", "must be at least 1");
+  check(s.extent > 0, "extent", "must be positive");
+  check(s.first_cell > 0, "first_cell", "must be positive");
+  check(s.first_cell < profile.max_radius(), "first_cell",
+        fmt::format("({:.4g} m) must be smaller than the hull radius ({:.4g} m)", s.first_cell,
+                    profile.max_radius()));
+  check(s.first_cell < s.extent, "first_cell",
+        fmt::format("({:.4g} m) must be smaller than extent ({:.4g} m)", s.first_cell, s.extent));
+}
+
+// Stations at equal steps of arc length along the curved profile, by inverting a fine table of
+// the cumulative chord length (its own error, ~(step)^2 curvature, is far below any grid spacing).
+class ArcLength {
+ public:
+  explicit ArcLength(const geometry::MyringProfile& p) {
+    constexpr int kSamples = 20000;
+    for (int k = 0; k <= kSamples; ++k) {
+      const double s = p.length() * k / kSamples;
+      const Vec2 q(s, p.radius(s));
+      arc_.push_back(k == 0 ? 0.0 : arc_.back() + (q - last_).norm());
+      station_.push_back(s);
+      last_ = q;
+    }
+  }
+  [[nodiscard]] double total() const { return arc_.back(); }
+  [[nodiscard]] double station(double arc) const {
+    const auto it = std::upper_bound(arc_.begin(), arc_.end(), arc);
+    if (it == arc_.end()) return station_.back();
+    const auto k = static_cast<std::size_t>(std::max<std::ptrdiff_t>(1, it - arc_.begin()));
+    const double t = (arc - arc_[k - 1]) / (arc_[k] - arc_[k - 1]);
+    return station_[k - 1] + t * (station_[k] - station_[k - 1]);
+  }
+
+ private:
+  std::vector<double> arc_, station_;
+  Vec2 last_ = Vec2::Zero();
+};
+
+// The wall-normal lines of the meridional grid: wall point (station, radius), the line that owns
+// that point (itself, or the rim line for a fan line), and the direction. Every wall point lies on
+// the exact profile; every direction is the wall normal there (the average of the two segment
+// normals), so the first cells are orthogonal to the wall. At each rim, where the flat end face
+// meets the curved hull at a convex corner (42 deg at the REMUS nose, 68 deg at the tail), a fan of
+// `rim_fan` lines turns from one face's normal to the other's: the fan cells are prisms on the rim
+// circle. For a convex profile the directions turn monotonically, so the lines never cross.
+struct WallLines {
+  std::vector<Vec2> point, dir;
+  std::vector<int> owner;
+  [[nodiscard]] int size() const { return static_cast<int>(point.size()); }
+};
+
+WallLines wall_lines(const geometry::MyringProfile& p, const HullGridSpec& s) {
+  const double r_nose = p.radius(0), r_tail = p.radius(p.length());
+  std::vector<Vec2> w;
+  std::vector<std::size_t> rims;  // indices (in w) of the two rim points
+  // Cells shrink towards the rims, where the meridian turns a corner.
+  for (double r : graded_nodes(0, r_nose, s.nose_face_cells, 1 / s.rim_clustering))
+    w.emplace_back(0.0, r);
+  rims.push_back(w.size() - 1);
+  const ArcLength arc(p);
+  const auto sigma = graded_nodes(0, arc.total(), s.body_cells, s.rim_clustering, true);
+  for (std::size_t k = 1; k + 1 < sigma.size(); ++k) {
+    const double st = arc.station(sigma[k]);
+    w.emplace_back(st, p.radius(st));
+  }
+  const auto tail = graded_nodes(0, r_tail, s.tail_face_cells, 1 / s.rim_clustering);
+  rims.push_back(w.size());
+  for (auto it = tail.rbegin(); it != tail.rend(); ++it) w.emplace_back(p.length(), *it);
+
+  const auto normal = [&](std::size_t a, std::size_t b) {
+    const Vec2 t = (w[b] - w[a]).normalized();
+    return Vec2(-t.y(), t.x());  // outward: the body lies on the right of the traversal
+  };
+  WallLines lines;
+  for (std::size_t i = 0; i < w.size(); ++i) {
+    const int here = lines.size();
+    if (i == 0 || i + 1 == w.size()) {  // the axis ahead of the nose and behind the tail
+      lines.point.push_back(w[i]);
+      lines.dir.emplace_back(i == 0 ? -1.0 : 1.0, 0.0);
+      lines.owner.push_back(here);
+      continue;
+    }
+    const Vec2 before = normal(i - 1, i), after = normal(i, i + 1);
+    const bool rim = i == rims[0] || i == rims[1];
+    const int count = rim ? s.rim_fan + 1 : 1;
+    const double a = std::atan2(before.y(), before.x()), b = std::atan2(after.y(), after.x());
+    for (int t = 0; t < count; ++t) {
+      const double angle = a + (b - a) * t / std::max(1, count - 1);
+      lines.point.push_back(w[i]);
+      lines.dir.push_back(rim ? Vec2(std::cos(angle), std::sin(angle))
+                              : Vec2((before + after).normalized()));
+      lines.owner.push_back(here);
+    }
+  }
+  return lines;
+}
+
+std::vector<double> normal_distances(const HullGridSpec& s) {
+  return s.normal_cells > 0 ? stretched_nodes(0, s.extent, s.first_cell, s.normal_cells)
+                            : grown_nodes(0, s.extent, s.first_cell, s.growth);
+}
+}  // namespace
+
+Grid hull_grid(const geometry::MyringProfile& profile, double cb_station, const HullGridSpec& s) {
+  check_spec(profile, s);
+  const WallLines lines = wall_lines(profile, s);
+  const auto dist = normal_distances(s);
+  const int ni = lines.size() - 1, nj = static_cast<int>(dist.size()) - 1;
+  const int nt = s.circumferential;
+
+  CellAssembler a;
+  std::vector<int> layer;  // j of every point, for the patch classifier
+  // index[i][j]: first point of the ring (i, j); axis lines (i = 0, ni) have a single point, and
+  // the fan lines of a rim share the rim's wall ring.
+  std::vector<std::vector<int>> index(static_cast<std::size_t>(ni + 1));
+  for (int i = 0; i <= ni; ++i) {
+    const auto iu = static_cast<std::size_t>(i);
+    const bool axis = i == 0 || i == ni;
+    for (int j = 0; j <= nj; ++j) {
+      if (j == 0 && lines.owner[iu] != i) {
+        index[iu].push_back(index[static_cast<std::size_t>(lines.owner[iu])][0]);
+        continue;
+      }
+      const Vec2 q = lines.point[iu] + dist[static_cast<std::size_t>(j)] * lines.dir[iu];
+      index[iu].push_back(static_cast<int>(a.points().size()));
+      for (int k = 0; k < (axis ? 1 : nt); ++k) {
+        // Half a step off the cardinal angles: no ring point in a cruciform fin's mid-plane.
+        const double th = 2 * std::numbers::pi * (k + 0.5) / nt;
+        const double r = axis ? 0.0 : q.y();
+        a.add_point(Eigen::Vector3d(cb_station - q.x(), r * std::cos(th), r * std::sin(th)));
+        layer.push_back(j);
+      }
+    }
+  }
+  const auto P = [&](int i, int j, int k) {
+    const int base = index[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
+    return (i == 0 || i == ni) ? base : base + k % nt;
+  };
+  // (i, j, theta) maps to (-x, r, theta), a left-handed triad: theta runs downward in the corner
+  // order. Checked on a mid-body cell; validate() checks every cell.
+  const auto hex = [&](int i, int j, int k) {
+    return HexCorners{P(i, j, k + 1),     P(i + 1, j, k + 1), P(i + 1, j + 1, k + 1),
+                      P(i, j + 1, k + 1), P(i, j, k),         P(i + 1, j, k),
+                      P(i + 1, j + 1, k), P(i, j + 1, k)};
+  };
+  if (!(a.signed_volume(hex(ni / 2, 0, 0)) > 0))
+    throw std::logic_error("hull grid: corner order gives a negative volume");
+  for (int i = 0; i < ni; ++i)
+    for (int j = 0; j < nj; ++j)
+      for (int k = 0; k < nt; ++k) a.add_hex(hex(i, j, k));
+
+  return a.build("hull", {{"hull", PatchType::wall}, {"hull_overset", PatchType::overset}},
+                 [&](std::span<const int> f) {
+                   const auto all = [&](int j) {
+                     return std::all_of(f.begin(), f.end(), [&](int p) {
+                       return layer[static_cast<std::size_t>(p)] == j;
+                     });
+                   };
+                   return all(0) ? 0 : all(nj) ? 1 : -1;
+                 });
+}
+
+}  // namespace auvloop::mesher

@@ -1,0 +1,200 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "auvloop/mesher/mesh_settings.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "auvloop/geometry/myring.hpp"
+
+namespace auvloop::mesher {
+
+namespace {
+constexpr double kDeg = std::numbers::pi / 180;
+
+double skin_friction(double speed, double nu, double length) {
+  return 0.026 / std::pow(speed * length / nu, 1.0 / 7);
+}
+
+double mean_chord(const geometry::Vehicle& v) {
+  return 0.5 * (v.fin_set.root_chord + v.fin_set.tip_chord);
+}
+
+void apply_yplus(MeshSettings& s, const geometry::Vehicle& v) {
+  const double length = geometry::MyringProfile(v.hull).length();
+  s.hull.first_cell =
+      flat_plate_wall_distance(s.hull_yplus, s.design_speed, s.kinematic_viscosity, length);
+  s.fin.first_cell =
+      flat_plate_wall_distance(s.fin_yplus, s.design_speed, s.kinematic_viscosity, mean_chord(v));
+}
+
+struct Preset {
+  const char* name;
+  double yplus;
+  int nose, body, tail, circumferential, rim_fan;
+  double hull_growth, hull_extent;
+  int chordwise, embedded, span, te_fan;
+  double fin_growth, fin_extent;
+  double spacing, bg_growth;
+};
+
+// Counts chosen for about 50 k, 250 k and 1 M cells in all (measured in docs/mesher.md). Coarse
+// and medium grids are for wall functions (y+ 30 and 5 with the all-y+ treatment); fine resolves
+// the viscous sublayer (y+ 1).
+constexpr Preset kPresets[] = {
+    {"coarse", 30, 3, 28, 2, 20, 3, 1.35, 0.22, 8, 2, 5, 6, 1.35, 0.05, 0.07, 1.35},
+    {"medium", 5, 5, 48, 4, 36, 5, 1.25, 0.14, 10, 3, 8, 6, 1.25, 0.04, 0.035, 1.25},
+    {"fine", 1, 8, 96, 6, 56, 8, 1.15, 0.1, 20, 4, 16, 10, 1.2, 0.035, 0.025, 1.15},
+};
+}  // namespace
+
+double flat_plate_wall_distance(double yplus, double speed, double nu, double length) {
+  const double u_tau = speed * std::sqrt(0.5 * skin_friction(speed, nu, length));
+  return yplus * nu / u_tau;
+}
+
+double flat_plate_yplus(double height, double speed, double nu, double length) {
+  return height / flat_plate_wall_distance(1.0, speed, nu, length);
+}
+
+std::vector<std::string> mesh_preset_names() {
+  return {"coarse", "medium", "fine"};
+}
+
+MeshSettings mesh_preset(std::string_view name, const geometry::Vehicle& v) {
+  for (const Preset& p : kPresets) {
+    if (name != p.name) continue;
+    MeshSettings s;
+    s.preset = p.name;
+    s.hull_yplus = s.fin_yplus = p.yplus;
+    s.hull.nose_face_cells = p.nose;
+    s.hull.body_cells = p.body;
+    s.hull.tail_face_cells = p.tail;
+    s.hull.circumferential = p.circumferential;
+    s.hull.rim_fan = p.rim_fan;
+    s.hull.growth = p.hull_growth;
+    s.hull.extent = p.hull_extent;
+    s.fin.chordwise_cells = p.chordwise;
+    s.fin.embedded_cells = p.embedded;
+    s.fin.span_cells = p.span;
+    s.fin.trailing_edge_fan = p.te_fan;
+    s.fin.growth = p.fin_growth;
+    s.fin.extent = s.fin.cap_height = p.fin_extent;
+    const geometry::MyringProfile profile(v.hull);
+    s.background.nose_x = v.mass.cb_station;
+    s.background.length = profile.length();
+    s.background.radius = std::max(v.fin_set.tip_radius, profile.max_radius());
+    s.background.spacing = p.spacing;
+    s.background.growth = p.bg_growth;
+    apply_yplus(s, v);
+    return s;
+  }
+  throw std::invalid_argument(
+      fmt::format("unknown mesh preset \"{}\" (choose coarse, medium or fine)", name));
+}
+
+namespace {
+void read_counts(input::Table t, std::string_view key, int& value, int min) {
+  value = static_cast<int>(t.integer_or(key, value, min, 100000));
+}
+
+void read_hull(input::Table t, HullGridSpec& h, bool& first_given) {
+  read_counts(t, "nose_face_cells", h.nose_face_cells, 1);
+  read_counts(t, "body_cells", h.body_cells, 2);
+  read_counts(t, "tail_face_cells", h.tail_face_cells, 1);
+  read_counts(t, "circumferential", h.circumferential, 4);
+  if (h.circumferential % 4 != 0)
+    t.fail("circumferential", fmt::format("{} is not a multiple of 4", h.circumferential));
+  read_counts(t, "normal_cells", h.normal_cells, 0);
+  first_given = t.has("first_cell");
+  h.first_cell = t.number_or("first_cell", h.first_cell, input::Range::positive(), "m");
+  h.growth = t.number_or("growth", h.growth, input::Range::closed(1, 3), "");
+  h.extent = t.number_or("extent", h.extent, input::Range::positive(), "m");
+  h.rim_clustering =
+      t.number_or("rim_clustering", h.rim_clustering, input::Range::closed(1, 2), "");
+  read_counts(t, "rim_fan", h.rim_fan, 1);
+  t.finish();
+}
+
+void read_fin(input::Table t, FinGridSpec& f, bool& first_given) {
+  read_counts(t, "chordwise_cells", f.chordwise_cells, 2);
+  read_counts(t, "normal_cells", f.normal_cells, 0);
+  read_counts(t, "embedded_cells", f.embedded_cells, 1);
+  read_counts(t, "span_cells", f.span_cells, 1);
+  read_counts(t, "cap_cells", f.cap_cells, 0);
+  read_counts(t, "trailing_edge_fan", f.trailing_edge_fan, 1);
+  first_given = t.has("first_cell");
+  f.first_cell = t.number_or("first_cell", f.first_cell, input::Range::positive(), "m");
+  f.growth = t.number_or("growth", f.growth, input::Range::closed(1, 3), "");
+  f.extent = t.number_or("extent", f.extent, input::Range::positive(), "m");
+  f.cap_height = t.number_or("cap_height", f.cap_height, input::Range::positive(), "m");
+  t.finish();
+}
+
+void read_background(input::Table t, BackgroundSpec& b) {
+  b.spacing = t.number_or("spacing", b.spacing, input::Range::positive(), "m");
+  b.growth = t.number_or("growth", b.growth, input::Range::closed(1, 3), "");
+  b.ahead = t.number_or("ahead", b.ahead, input::Range::positive(), "L");
+  b.behind = t.number_or("behind", b.behind, input::Range::positive(), "L");
+  b.side = t.number_or("side", b.side, input::Range::positive(), "L");
+  b.wake = t.number_or("wake", b.wake, input::Range::non_negative(), "L");
+  b.margin = t.number_or("margin", b.margin, input::Range::non_negative(), "m");
+  t.finish();
+}
+}  // namespace
+
+MeshSettings read_mesh_settings(input::Table mesh, const geometry::Vehicle& v,
+                                std::string_view preset_override) {
+  const std::string from_file = mesh.choice_or("preset", "medium", {"coarse", "medium", "fine"});
+  MeshSettings s = mesh_preset(preset_override.empty() ? from_file : preset_override, v);
+  s.design_speed = mesh.number_or("design_speed", s.design_speed, input::Range::positive(), "m/s");
+  s.kinematic_viscosity = mesh.number_or("kinematic_viscosity", s.kinematic_viscosity,
+                                         input::Range::positive(), "m^2/s");
+  s.hull_yplus = mesh.number_or("hull_yplus", s.hull_yplus, input::Range::positive(), "");
+  s.fin_yplus = mesh.number_or("fin_yplus", s.fin_yplus, input::Range::positive(), "");
+  apply_yplus(s, v);
+  bool hull_first = false, fin_first = false;
+  const double hull_h = s.hull.first_cell, fin_h = s.fin.first_cell;
+  if (auto t = mesh.optional_table("hull")) read_hull(*t, s.hull, hull_first);
+  if (auto t = mesh.optional_table("fin")) read_fin(*t, s.fin, fin_first);
+  if (auto t = mesh.optional_table("background")) read_background(*t, s.background);
+  if (!hull_first) s.hull.first_cell = hull_h;
+  if (!fin_first) s.fin.first_cell = fin_h;
+  const double limit = v.fin_set.max_deflection / kDeg;
+  const auto n = v.fin_set.fins.size();
+  if (auto d = mesh.optional_numbers("fin_deflections", n, n, input::Range::closed(-limit, limit),
+                                     "deg")) {
+    for (double deg : *d) s.fin_deflections.push_back(deg * kDeg);
+  }
+  mesh.finish();
+  return s;
+}
+
+void check_mesh_settings(const MeshSettings& s, const geometry::Vehicle& v) {
+  const auto fail = [](const std::string& what) { throw std::invalid_argument(what); };
+  if (!(s.design_speed > 0)) fail("mesh: design_speed must be positive");
+  if (!(s.kinematic_viscosity > 0)) fail("mesh: kinematic_viscosity must be positive");
+  const double r = geometry::MyringProfile(v.hull).max_radius();
+  if (!(s.hull.first_cell < r)) {
+    fail(
+        fmt::format("mesh: hull.first_cell ({:.4g} m) must be smaller than the hull radius "
+                    "({:.4g} m)",
+                    s.hull.first_cell, r));
+  }
+  if (!s.fin_deflections.empty() && s.fin_deflections.size() != v.fin_set.fins.size()) {
+    fail(fmt::format("mesh: fin_deflections has {} values; the vehicle has {} fins",
+                     s.fin_deflections.size(), v.fin_set.fins.size()));
+  }
+  for (std::size_t i = 0; i < s.fin_deflections.size(); ++i) {
+    if (std::abs(s.fin_deflections[i]) > v.fin_set.max_deflection * (1 + 1e-12)) {
+      fail(fmt::format(
+          "mesh: fin_deflections: {:.3g} deg for fin {} exceeds the vehicle's "
+          "max_deflection of {:.3g} deg",
+          s.fin_deflections[i] / kDeg, v.fin_set.fins[i].name, v.fin_set.max_deflection / kDeg));
+    }
+  }
+}
+
+}  // namespace auvloop::mesher

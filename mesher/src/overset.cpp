@@ -1,0 +1,680 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "auvloop/mesher/overset.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <queue>
+#include <stdexcept>
+
+#include <CGAL/Orthogonal_k_neighbor_search.h>
+#include <CGAL/Search_traits_3.h>
+#include <CGAL/Search_traits_adapter.h>
+#include <CGAL/Simple_cartesian.h>
+#include <CGAL/property_map.h>
+#include <Eigen/Dense>
+#include <boost/iterator/zip_iterator.hpp>
+
+#include "auvloop/geometry/myring.hpp"
+#include "auvloop/geometry/surface_query.hpp"
+#include "auvloop/mesher/fin_grid.hpp"
+
+namespace auvloop::mesher {
+
+const char* to_string(CellStatus s) {
+  switch (s) {
+    case CellStatus::active:
+      return "active";
+    case CellStatus::fringe:
+      return "fringe";
+    case CellStatus::hole:
+      return "hole";
+    case CellStatus::orphan:
+      return "orphan";
+  }
+  return "unknown";
+}
+
+int GridAssembly::count(CellStatus s) const {
+  return static_cast<int>(std::count(status.begin(), status.end(), s));
+}
+
+namespace {
+using SK = CGAL::Simple_cartesian<double>;
+using KPoint = SK::Point_3;
+using PointAndIndex = boost::tuple<KPoint, int>;
+using KTraits =
+    CGAL::Search_traits_adapter<PointAndIndex, CGAL::Nth_of_tuple_property_map<0, PointAndIndex>,
+                                CGAL::Search_traits_3<SK>>;
+using KSearch = CGAL::Orthogonal_k_neighbor_search<KTraits>;
+using KTree = KSearch::Tree;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+struct Box {
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(kInf), hi = Eigen::Vector3d::Constant(-kInf);
+  void add(const Eigen::Vector3d& p) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  [[nodiscard]] bool contains(const Eigen::Vector3d& p, double margin = 0) const {
+    return (p.array() >= lo.array() - margin).all() && (p.array() <= hi.array() + margin).all();
+  }
+};
+
+// One component grid with what the assembly needs: geometry in its own frame, cell-to-face
+// addressing, cell sizes, a k-d tree of cell centres, and its place in the priority order.
+struct GridData {
+  const Grid* grid = nullptr;
+  GridGeometry geo;
+  std::vector<int> cell_face_offsets, cell_faces;
+  std::vector<double> size;  // cube root of the cell volume
+  std::vector<char> outer;   // owns a face of an overset patch
+  std::vector<int> ids;
+  std::vector<KPoint> centres;
+  std::unique_ptr<KTree> tree;
+  Box local_box;
+  int priority = 0;
+  int fin = -1;  // index of the fin it belongs to, -1 for hull and background
+
+  [[nodiscard]] int other(int face, int cell) const {
+    const auto f = static_cast<std::size_t>(face);
+    if (face >= grid->internal_faces()) return -1;
+    return grid->owner[f] == cell ? grid->neighbour[f] : grid->owner[f];
+  }
+  template <class F>
+  void each_face(int cell, F&& fn) const {
+    const auto c = static_cast<std::size_t>(cell);
+    for (int k = cell_face_offsets[c]; k < cell_face_offsets[c + 1]; ++k)
+      fn(cell_faces[static_cast<std::size_t>(k)]);
+  }
+  template <class F>
+  void each_neighbour(int cell, F&& fn) const {
+    each_face(cell, [&](int f) {
+      const int n = other(f, cell);
+      if (n >= 0) fn(n);
+    });
+  }
+};
+
+GridData prepare(const Grid& g, int priority, int fin) {
+  GridData d;
+  d.grid = &g;
+  d.priority = priority;
+  d.fin = fin;
+  d.geo = compute_geometry(g);
+  const auto nc = static_cast<std::size_t>(g.cells);
+  std::vector<int> count(nc + 1, 0);
+  for (int f = 0; f < g.faces(); ++f) {
+    ++count[static_cast<std::size_t>(g.owner[static_cast<std::size_t>(f)]) + 1];
+    if (f < g.internal_faces())
+      ++count[static_cast<std::size_t>(g.neighbour[static_cast<std::size_t>(f)]) + 1];
+  }
+  for (std::size_t c = 0; c < nc; ++c) count[c + 1] += count[c];
+  d.cell_face_offsets = count;
+  d.cell_faces.resize(static_cast<std::size_t>(count[nc]));
+  auto fill = count;
+  for (int f = 0; f < g.faces(); ++f) {
+    const auto o = static_cast<std::size_t>(g.owner[static_cast<std::size_t>(f)]);
+    d.cell_faces[static_cast<std::size_t>(fill[o]++)] = f;
+    if (f < g.internal_faces()) {
+      const auto n = static_cast<std::size_t>(g.neighbour[static_cast<std::size_t>(f)]);
+      d.cell_faces[static_cast<std::size_t>(fill[n]++)] = f;
+    }
+  }
+  d.outer.assign(nc, 0);
+  for (const auto& p : g.patches)
+    if (p.type == PatchType::overset)
+      for (int f = p.start; f < p.start + p.size; ++f)
+        d.outer[static_cast<std::size_t>(g.owner[static_cast<std::size_t>(f)])] = 1;
+  d.size.resize(nc);
+  for (std::size_t c = 0; c < nc; ++c) {
+    d.size[c] = std::cbrt(d.geo.cell_volume[c]);
+    const auto& x = d.geo.cell_centre[c];
+    d.centres.emplace_back(x.x(), x.y(), x.z());
+    d.ids.push_back(static_cast<int>(c));
+  }
+  for (const auto& p : g.points) d.local_box.add(p);
+  d.tree = std::make_unique<KTree>(
+      boost::make_zip_iterator(boost::make_tuple(d.centres.begin(), d.ids.begin())),
+      boost::make_zip_iterator(boost::make_tuple(d.centres.end(), d.ids.end())));
+  return d;
+}
+
+// Signed distance of x beyond the face plane, along the cell's outward normal.
+double beyond(const GridData& d, int face, int cell, const Eigen::Vector3d& x) {
+  const auto f = static_cast<std::size_t>(face);
+  const Eigen::Vector3d& S = d.geo.face_area[f];
+  const double sign = d.grid->owner[f] == cell ? 1.0 : -1.0;
+  return sign * S.dot(x - d.geo.face_centre[f]) / S.norm();
+}
+
+// How far x lies outside a cell: the largest distance beyond any of its face planes (<= 0 inside).
+double violation(const GridData& d, int cell, const Eigen::Vector3d& x) {
+  double worst = -kInf;
+  d.each_face(cell, [&](int f) { worst = std::max(worst, beyond(d, f, cell, x)); });
+  return worst;
+}
+
+// The cell containing x (grid frame): walk towards x across the face it lies furthest beyond,
+// from `seed` (a previous donor) or the nearest cell centre (k-d tree). A walk can end on the
+// boundary although x is inside the grid (the fluid round a convex body is not convex), or
+// circle among warped cells; then the 16 nearest cells are tried. -1: x is in no cell.
+int locate(const GridData& d, const Eigen::Vector3d& x, int seed) {
+  if (!d.local_box.contains(x)) return -1;
+  const KPoint q(x.x(), x.y(), x.z());
+  int c = seed;
+  if (c < 0) {
+    KSearch search(*d.tree, q, 1);
+    c = boost::get<1>(search.begin()->first);
+  }
+  for (int step = 0; step < 200 && c >= 0; ++step) {
+    int best_face = -1;
+    double best = 1e-12 * d.size[static_cast<std::size_t>(c)];
+    d.each_face(c, [&](int f) {
+      const double s = beyond(d, f, c, x);
+      if (s > best) {
+        best = s;
+        best_face = f;
+      }
+    });
+    if (best_face < 0) return c;
+    c = d.other(best_face, c);
+  }
+  KSearch search(*d.tree, q, 16);
+  int best_cell = -1;
+  double best = kInf;
+  for (const auto& hit : search) {
+    const int cell = boost::get<1>(hit.first);
+    const double v = violation(d, cell, x) / d.size[static_cast<std::size_t>(cell)];
+    if (v < best) {
+      best = v;
+      best_cell = cell;
+    }
+  }
+  // Warped faces: accept a point within a thousandth of the cell size outside its face planes.
+  return best <= 1e-3 ? best_cell : -1;
+}
+
+// Interpolation weights reproducing linear fields: minimise sum w_i^2 / D_i subject to
+// sum w_i = 1 and sum w_i (x_i - x) = 0, D_i = 1 / |x_i - x|^2 (near cells weigh more).
+bool linear_weights(const std::vector<Eigen::Vector3d>& xs, const Eigen::Vector3d& x,
+                    std::vector<double>& w) {
+  const auto n = static_cast<Eigen::Index>(xs.size());
+  if (n < 4) return false;
+  // Offsets in units of the stencil's extent keep the 4 x 4 system well scaled; the constraints
+  // (and so the exactness for linear fields) do not depend on that scale or on D.
+  double h = 0;
+  for (const auto& p : xs) h = std::max(h, (p - x).norm());
+  Eigen::MatrixXd A(4, n);
+  Eigen::VectorXd D(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const Eigen::Vector3d r = (xs[static_cast<std::size_t>(i)] - x) / h;
+    A.col(i) << 1.0, r;
+    D(i) = 1.0 / (r.squaredNorm() + 1e-3);
+  }
+  const Eigen::Matrix4d M = A * D.asDiagonal() * A.transpose();
+  const Eigen::FullPivLU<Eigen::Matrix4d> lu(M);
+  if (lu.rank() < 4) return false;
+  const Eigen::Vector4d y = lu.solve(Eigen::Vector4d(1, 0, 0, 0));
+  const Eigen::VectorXd wv = D.asDiagonal() * (A.transpose() * y);
+  w.assign(wv.data(), wv.data() + n);
+  return true;
+}
+}  // namespace
+
+struct OversetAssembler::Impl {
+  GridSystem* sys = nullptr;
+  OversetSettings settings;
+  std::vector<GridData> grids;  // GridSystem::grids() order
+  std::vector<int> order;       // grid indices, highest priority first
+  std::unique_ptr<geometry::SurfaceQuery> hull;
+  Box hull_box;
+  std::vector<std::unique_ptr<geometry::SurfaceQuery>> fins;
+  std::vector<Box> fin_boxes;
+  std::vector<std::vector<double>> depth;      // per grid: distance from holes and outer edge (m)
+  std::vector<std::vector<double>> wall_dist;  // per grid: distance of cell centres from its wall
+  std::vector<std::vector<char>> wall_hole;    // per grid: centre inside another solid
+  std::unique_ptr<geometry::MyringProfile> profile;
+  double cb_station = 0;
+
+  // Steps 1-3 for the given cells of every grid (all others keep their statuses and depths).
+  void run(Assembly& a, const std::vector<std::vector<int>>& cells) {
+    for (int g : order)
+      mark_wall_holes(g, cells[static_cast<std::size_t>(g)],
+                      a.grids[static_cast<std::size_t>(g)].status);
+    for (int g : order)
+      if (grids[static_cast<std::size_t>(g)].priority > 0)
+        measure_depth(g, cells[static_cast<std::size_t>(g)],
+                      a.grids[static_cast<std::size_t>(g)].status,
+                      depth[static_cast<std::size_t>(g)]);
+    for (int g : order)
+      cover(g, cells[static_cast<std::size_t>(g)], a.grids[static_cast<std::size_t>(g)].status);
+    // Fringe layers are redrawn on the cells given and `fringe_layers` rings around them: a
+    // ring cell may have been fringe only because of a cell that changed.
+    for (int g : order) {
+      const auto gu = static_cast<std::size_t>(g);
+      const auto& d = grids[gu];
+      std::vector<char> in(a.grids[gu].status.size(), 0);
+      std::vector<int> region = cells[gu];
+      for (int c : region) in[static_cast<std::size_t>(c)] = 1;
+      std::size_t begin = 0;
+      for (int l = 0; l < settings.fringe_layers; ++l) {
+        const std::size_t end = region.size();
+        for (std::size_t i = begin; i < end; ++i)
+          d.each_neighbour(region[i], [&](int n) {
+            if (!in[static_cast<std::size_t>(n)]) {
+              in[static_cast<std::size_t>(n)] = 1;
+              region.push_back(n);
+            }
+          });
+        begin = end;
+      }
+      add_fringe(g, region, a.grids[gu].status);
+    }
+  }
+
+  [[nodiscard]] Eigen::Vector3d body(int g, int c) const {
+    const auto& d = grids[static_cast<std::size_t>(g)];
+    return d.grid->placement * d.geo.cell_centre[static_cast<std::size_t>(c)];
+  }
+  [[nodiscard]] Box body_box(int g) const {
+    const auto& d = grids[static_cast<std::size_t>(g)];
+    Box b;
+    for (int k = 0; k < 8; ++k) {
+      const Eigen::Vector3d corner((k & 1) ? d.local_box.hi.x() : d.local_box.lo.x(),
+                                   (k & 2) ? d.local_box.hi.y() : d.local_box.lo.y(),
+                                   (k & 4) ? d.local_box.hi.z() : d.local_box.lo.z());
+      b.add(d.grid->placement * corner);
+    }
+    return b;
+  }
+
+  // Fins turn rigidly with their grids: their surfaces are built once, undeflected, and queried
+  // in the fin grid's frame, so moving a fin costs no new triangulation or tree.
+  void place_fins(const std::vector<double>& deflections) {
+    set_fin_deflections(*sys, deflections);
+  }
+
+  // Inside a solid other than the one grid g fits: a body-fitted grid is not cut by its own body
+  // (its wall is that body's surface, and the centres of thin wall cells over a curved wall may
+  // lie inside the finer triangulation by the chord sagitta).
+  [[nodiscard]] bool in_body(const Eigen::Vector3d& x, int g) const {
+    const int own_fin = grids[static_cast<std::size_t>(g)].fin;
+    if (g != 0 && hull_box.contains(x) && hull->inside(x)) return true;
+    for (std::size_t i = 0; i < fins.size(); ++i) {
+      if (static_cast<int>(i) == own_fin) continue;
+      const Eigen::Vector3d xl = sys->fins[i].placement.inverse() * x;
+      if (fin_boxes[i].contains(xl) && fins[i]->inside(xl)) return true;
+    }
+    return false;
+  }
+
+  // Step 1 for the cells given: wall holes (centre inside a solid other than the grid's own).
+  void mark_wall_holes(int g, const std::vector<int>& cells, std::vector<CellStatus>& st) {
+    auto& holes = wall_hole[static_cast<std::size_t>(g)];
+    for (int c : cells) {
+      const auto cu = static_cast<std::size_t>(c);
+      holes[cu] = in_body(body(g, c), g) ? 1 : 0;
+      st[cu] = holes[cu] ? CellStatus::hole : CellStatus::active;
+    }
+  }
+
+  // Step 2: a cell is covered by another component grid whose wall is nearer (by the fringe
+  // layers plus one and a half of this cell's sizes, so that both grids keep an overlap band where
+  // each has active cells for the other's fringe), when it also lies `overlap_cells` of its sizes
+  // inside that grid (away from its outer boundary and wall holes). The background has no wall:
+  // it is covered wherever a component grid reaches deep enough.
+  void cover(int g, const std::vector<int>& cells, std::vector<CellStatus>& st) const {
+    const auto& d = grids[static_cast<std::size_t>(g)];
+    const auto& own_wall = wall_dist[static_cast<std::size_t>(g)];
+    std::vector<int> others;
+    std::vector<Box> boxes;
+    for (int h : order) {
+      if (h == g || grids[static_cast<std::size_t>(h)].priority == 0) continue;  // not background
+      others.push_back(h);
+      boxes.push_back(body_box(h));
+    }
+    for (int c : cells) {
+      const auto cu = static_cast<std::size_t>(c);
+      if (st[cu] != CellStatus::active) continue;
+      const Eigen::Vector3d x = body(g, c);
+      const double band = (settings.fringe_layers + 1.5) * d.size[cu];
+      for (std::size_t k = 0; k < others.size(); ++k) {
+        if (!boxes[k].contains(x)) continue;
+        const auto hu = static_cast<std::size_t>(others[k]);
+        const auto& hd = grids[hu];
+        const int loc = locate(hd, hd.grid->placement.inverse() * x, -1);
+        if (loc < 0) continue;
+        const auto lu = static_cast<std::size_t>(loc);
+        if (wall_hole[hu][lu] || depth[hu][lu] < settings.overlap_cells * d.size[cu]) continue;
+        if (wall_dist[hu][lu] + band < own_wall[cu]) {
+          st[cu] = CellStatus::hole;
+          break;
+        }
+      }
+    }
+  }
+
+  // Step 3: fringe = the non-hole cells at most `fringe_layers` face steps from a hole, counting
+  // a cell on the outer (overset) boundary as one step. Decided for the cells given from the holes
+  // within reach of them, so that a partial update draws the same layers as a full assembly.
+  void add_fringe(int g, const std::vector<int>& cells, std::vector<CellStatus>& st) const {
+    const auto& d = grids[static_cast<std::size_t>(g)];
+    const int layers = settings.fringe_layers;
+    std::vector<int> level(st.size(), -1), region = cells;  // -1: not in the region
+    for (int c : region) level[static_cast<std::size_t>(c)] = layers + 1;
+    std::size_t begin = 0;
+    for (int l = 0; l < layers; ++l) {  // the holes that can reach the cells lie this far out
+      const std::size_t end = region.size();
+      for (std::size_t i = begin; i < end; ++i)
+        d.each_neighbour(region[i], [&](int n) {
+          if (level[static_cast<std::size_t>(n)] < 0) {
+            level[static_cast<std::size_t>(n)] = layers + 1;
+            region.push_back(n);
+          }
+        });
+      begin = end;
+    }
+    std::vector<int> queue;
+    for (int c : region) {
+      const auto cu = static_cast<std::size_t>(c);
+      if (st[cu] == CellStatus::hole) {
+        level[cu] = 0;
+        queue.push_back(c);
+      } else if (d.outer[cu]) {
+        level[cu] = 1;
+      }
+    }
+    for (int c : region)
+      if (level[static_cast<std::size_t>(c)] == 1) queue.push_back(c);
+    for (std::size_t i = 0; i < queue.size(); ++i) {  // breadth first: levels in order
+      const int c = queue[i];
+      const int next = level[static_cast<std::size_t>(c)] + 1;
+      if (next > layers) continue;
+      d.each_neighbour(c, [&](int n) {
+        const auto nu = static_cast<std::size_t>(n);
+        if (level[nu] > next && st[nu] != CellStatus::hole) {
+          level[nu] = next;
+          queue.push_back(n);
+        }
+      });
+    }
+    for (int c : cells) {
+      const auto cu = static_cast<std::size_t>(c);
+      if (st[cu] == CellStatus::hole) continue;
+      st[cu] = level[cu] <= layers ? CellStatus::fringe : CellStatus::active;
+    }
+  }
+
+  // Distance of each cell centre from the grid's wall holes and outer-boundary cells, along paths
+  // of centre-to-centre steps (Dijkstra), for the `cells` given; others keep their values and act
+  // as sources.
+  void measure_depth(int g, const std::vector<int>& cells, const std::vector<CellStatus>& st,
+                     std::vector<double>& dist) const {
+    const auto& d = grids[static_cast<std::size_t>(g)];
+    using Item = std::pair<double, int>;
+    std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
+    std::vector<char> open(static_cast<std::size_t>(d.grid->cells), 0);
+    for (int c : cells) open[static_cast<std::size_t>(c)] = 1;
+    for (int c : cells) {
+      const auto cu = static_cast<std::size_t>(c);
+      dist[cu] = st[cu] == CellStatus::active && !d.outer[cu] ? kInf : 0.0;
+      if (dist[cu] == 0.0) queue.emplace(0.0, c);
+      d.each_neighbour(c, [&](int n) {  // fixed values just outside the updated region
+        if (!open[static_cast<std::size_t>(n)]) queue.emplace(dist[static_cast<std::size_t>(n)], n);
+      });
+    }
+    while (!queue.empty()) {
+      const auto [dc, c] = queue.top();
+      queue.pop();
+      if (dc > dist[static_cast<std::size_t>(c)]) continue;
+      d.each_neighbour(c, [&](int n) {
+        const auto nu = static_cast<std::size_t>(n);
+        if (!open[nu]) return;
+        const double dn =
+            dc + (d.geo.cell_centre[nu] - d.geo.cell_centre[static_cast<std::size_t>(c)]).norm();
+        if (dn < dist[nu]) {
+          dist[nu] = dn;
+          queue.emplace(dn, n);
+        }
+      });
+    }
+  }
+
+  // Donor stencil of one fringe cell; false when no grid offers an active donor.
+  bool find_donor(int g, int c, int seed_grid, int seed_cell, Assembly& a,
+                  std::vector<int>& cells_out, std::vector<double>& w_out, int& donor_grid,
+                  int& donor_cell) const {
+    const Eigen::Vector3d x = body(g, c);
+    for (int h : order) {
+      if (h == g) continue;
+      const auto& hd = grids[static_cast<std::size_t>(h)];
+      const auto& hs = a.grids[static_cast<std::size_t>(h)].status;
+      const Eigen::Vector3d xl = hd.grid->placement.inverse() * x;
+      const int loc = locate(hd, xl, h == seed_grid ? seed_cell : -1);
+      if (loc < 0 || hs[static_cast<std::size_t>(loc)] != CellStatus::active) continue;
+      // The donor and its active face neighbours, grown ring by ring (at most three) while the
+      // centres do not span 3D (at the edge of an active region they may all lie in one plane).
+      std::vector<int> stencil{loc};
+      const auto add_ring = [&] {
+        const auto ring = stencil;
+        for (int cell : ring)
+          hd.each_neighbour(cell, [&](int n) {
+            if (hs[static_cast<std::size_t>(n)] == CellStatus::active &&
+                std::find(stencil.begin(), stencil.end(), n) == stencil.end())
+              stencil.push_back(n);
+          });
+      };
+      bool ok = false;
+      for (int ring = 0; ring < 3 && !ok; ++ring) {
+        add_ring();
+        std::vector<Eigen::Vector3d> xs;
+        for (int s : stencil) xs.push_back(hd.geo.cell_centre[static_cast<std::size_t>(s)]);
+        ok = linear_weights(xs, xl, w_out);
+      }
+      if (!ok) continue;
+      cells_out = std::move(stencil);
+      donor_grid = h;
+      donor_cell = loc;
+      return true;
+    }
+    return false;
+  }
+
+  // Donors for every fringe cell. With a previous assembly, a stencil is kept when its receiver
+  // was not re-examined (`redo` false), its donor grid did not move and its cells are still
+  // active; otherwise the search starts from the previous donor cell.
+  void connect(Assembly& a, const Assembly* previous,
+               const std::vector<std::vector<char>>* redo) const {
+    for (auto& ga : a.grids)  // an orphan is a fringe cell still looking for donors
+      std::replace(ga.status.begin(), ga.status.end(), CellStatus::orphan, CellStatus::fringe);
+    for (std::size_t g = 0; g < grids.size(); ++g) {
+      auto& ga = a.grids[g];
+      const auto n = static_cast<std::size_t>(grids[g].grid->cells);
+      ga.donor_grid.assign(n, -1);
+      ga.donor_cell.assign(n, -1);
+      ga.stencil_offsets.assign(1, 0);
+      ga.stencil_cells.clear();
+      ga.stencil_weights.clear();
+      std::vector<int> cells;
+      std::vector<double> w;
+      for (std::size_t c = 0; c < n; ++c) {
+        if (ga.status[c] == CellStatus::fringe && !(previous && keep(a, *previous, *redo, g, c))) {
+          int seed_grid = -1, seed_cell = -1;
+          if (previous != nullptr) {
+            seed_grid = previous->grids[g].donor_grid[c];
+            seed_cell = previous->grids[g].donor_cell[c];
+          }
+          int dg = -1, dc = -1;
+          if (find_donor(static_cast<int>(g), static_cast<int>(c), seed_grid, seed_cell, a, cells,
+                         w, dg, dc)) {
+            ga.donor_grid[c] = dg;
+            ga.donor_cell[c] = dc;
+            ga.stencil_cells.insert(ga.stencil_cells.end(), cells.begin(), cells.end());
+            ga.stencil_weights.insert(ga.stencil_weights.end(), w.begin(), w.end());
+          } else {
+            ga.status[c] = CellStatus::orphan;
+          }
+        } else if (ga.status[c] == CellStatus::fringe) {  // copy the previous stencil
+          const auto& pg = previous->grids[g];
+          ga.donor_grid[c] = pg.donor_grid[c];
+          ga.donor_cell[c] = pg.donor_cell[c];
+          const auto b = static_cast<std::size_t>(pg.stencil_offsets[c]);
+          const auto e = static_cast<std::size_t>(pg.stencil_offsets[c + 1]);
+          ga.stencil_cells.insert(ga.stencil_cells.end(),
+                                  pg.stencil_cells.begin() + static_cast<std::ptrdiff_t>(b),
+                                  pg.stencil_cells.begin() + static_cast<std::ptrdiff_t>(e));
+          ga.stencil_weights.insert(ga.stencil_weights.end(),
+                                    pg.stencil_weights.begin() + static_cast<std::ptrdiff_t>(b),
+                                    pg.stencil_weights.begin() + static_cast<std::ptrdiff_t>(e));
+        }
+        ga.stencil_offsets.push_back(static_cast<int>(ga.stencil_cells.size()));
+      }
+    }
+  }
+
+  [[nodiscard]] bool keep(const Assembly& a, const Assembly& previous,
+                          const std::vector<std::vector<char>>& redo, std::size_t g,
+                          std::size_t c) const {
+    const auto& pg = previous.grids[g];
+    if (redo[g][c] || pg.status[c] != CellStatus::fringe) return false;
+    if (grids[g].fin >= 0) return false;  // the receiver moved
+    const int dg = pg.donor_grid[c];
+    if (dg < 0 || grids[static_cast<std::size_t>(dg)].fin >= 0) return false;  // donor moved
+    const auto& ds = a.grids[static_cast<std::size_t>(dg)].status;
+    for (int k = pg.stencil_offsets[c]; k < pg.stencil_offsets[c + 1]; ++k)
+      if (ds[static_cast<std::size_t>(pg.stencil_cells[static_cast<std::size_t>(k)])] !=
+          CellStatus::active)
+        return false;
+    return true;
+  }
+};
+
+OversetAssembler::OversetAssembler(GridSystem& system, const geometry::Vehicle& vehicle,
+                                   OversetSettings settings)
+    : impl_(std::make_unique<Impl>()) {
+  auto& m = *impl_;
+  m.sys = &system;
+  m.settings = settings;
+  const auto hull_mesh = geometry::hull_surface(geometry::MyringProfile(vehicle.hull),
+                                                vehicle.mass.cb_station, {settings.surface_edge});
+  for (const auto& v : hull_mesh.vertices()) {
+    const auto& p = hull_mesh.point(v);
+    m.hull_box.add(Eigen::Vector3d(p.x(), p.y(), p.z()));
+  }
+  m.hull = std::make_unique<geometry::SurfaceQuery>(hull_mesh);
+  m.grids.push_back(prepare(system.hull, 1, -1));
+  for (std::size_t i = 0; i < system.fins.size(); ++i)
+    m.grids.push_back(prepare(system.fins[i], 2, static_cast<int>(i)));
+  m.grids.push_back(prepare(system.background, 0, -1));
+  for (std::size_t i = 1; i + 1 < m.grids.size(); ++i) m.order.push_back(static_cast<int>(i));
+  m.order.push_back(0);
+  m.order.push_back(static_cast<int>(m.grids.size()) - 1);
+  m.profile = std::make_unique<geometry::MyringProfile>(vehicle.hull);
+  for (const auto& fin : system.fin_geometry) {
+    const auto mesh = geometry::fin_surface(fin, 0.0, {settings.surface_edge});
+    Box b;
+    for (const auto& v : mesh.vertices()) {
+      const auto& p = mesh.point(v);
+      b.add(Eigen::Vector3d(p.x(), p.y(), p.z()));
+    }
+    m.fin_boxes.push_back(b);
+    m.fins.push_back(std::make_unique<geometry::SurfaceQuery>(mesh));
+  }
+  m.cb_station = vehicle.mass.cb_station;
+  // Wall distances in each grid's own frame: fixed, since a fin grid turns with its fin.
+  for (const auto& d : m.grids) {
+    const auto n = static_cast<std::size_t>(d.grid->cells);
+    std::vector<double> w(n, kInf);
+    const geometry::SurfaceQuery* q = d.priority == 1 ? m.hull.get()
+                                      : d.fin >= 0 ? m.fins[static_cast<std::size_t>(d.fin)].get()
+                                                   : nullptr;
+    if (q != nullptr)
+      for (std::size_t c = 0; c < n; ++c) w[c] = std::abs(q->signed_distance(d.geo.cell_centre[c]));
+    m.wall_dist.push_back(std::move(w));
+    m.wall_hole.emplace_back(n, 0);
+    m.depth.emplace_back(n, kInf);
+  }
+}
+
+OversetAssembler::OversetAssembler(OversetAssembler&&) noexcept = default;
+OversetAssembler::~OversetAssembler() = default;
+
+Eigen::Vector3d OversetAssembler::centre(int grid, int cell) const {
+  return impl_->body(grid, cell);
+}
+
+Assembly OversetAssembler::assemble(const std::vector<double>& deflections) {
+  const auto t0 = std::chrono::steady_clock::now();
+  auto& m = *impl_;
+  m.place_fins(deflections);
+  Assembly a;
+  a.fin_deflections = deflections;
+  a.grids.resize(m.grids.size());
+  std::vector<std::vector<int>> all(m.grids.size());
+  for (std::size_t g = 0; g < m.grids.size(); ++g) {
+    const int n = m.grids[g].grid->cells;
+    a.grids[g].status.assign(static_cast<std::size_t>(n), CellStatus::active);
+    for (int c = 0; c < n; ++c) all[g].push_back(c);
+    a.cells_visited += n;
+  }
+  m.run(a, all);
+  m.connect(a, nullptr, nullptr);
+  a.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return a;
+}
+
+Assembly OversetAssembler::update(const Assembly& previous,
+                                  const std::vector<double>& deflections) {
+  const auto t0 = std::chrono::steady_clock::now();
+  auto& m = *impl_;
+  // The region the fins sweep: their grids' boxes before and after the move.
+  std::vector<Box> swept;
+  for (std::size_t g = 0; g < m.grids.size(); ++g)
+    if (m.grids[g].fin >= 0) swept.push_back(m.body_box(static_cast<int>(g)));
+  m.place_fins(deflections);
+  for (std::size_t g = 0, k = 0; g < m.grids.size(); ++g)
+    if (m.grids[g].fin >= 0) {
+      const Box b = m.body_box(static_cast<int>(g));
+      swept[k].add(b.lo);
+      swept[k].add(b.hi);
+      ++k;
+    }
+  Assembly a = previous;
+  a.fin_deflections = deflections;
+  a.cells_visited = 0;
+  const double reach_cells = m.settings.overlap_cells + m.settings.fringe_layers + 2;
+  std::vector<std::vector<int>> cells(m.grids.size());
+  std::vector<std::vector<char>> redo(m.grids.size());
+  for (std::size_t g = 0; g < m.grids.size(); ++g) {
+    const auto& d = m.grids[g];
+    redo[g].assign(static_cast<std::size_t>(d.grid->cells), 0);
+    // Hull and background: a status can change only within reach of the swept boxes (overlap
+    // depth plus fringe layers and a margin, in the cell's own size). A fin grid turns with its
+    // fin, so its cells change only as near to the hull or to the other fins.
+    for (int c = 0; c < d.grid->cells; ++c) {
+      const Eigen::Vector3d x = m.body(static_cast<int>(g), c);
+      const double reach = reach_cells * d.size[static_cast<std::size_t>(c)];
+      bool near = false;
+      for (std::size_t k = 0; k < swept.size() && !near; ++k)
+        near = static_cast<int>(k) != d.fin && swept[k].contains(x, reach);
+      if (d.fin >= 0 && !near) {
+        const double station = std::clamp(m.cb_station - x.x(), 0.0, m.profile->length());
+        near = std::hypot(x.y(), x.z()) - m.profile->radius(station) < reach;
+      }
+      if (near) {
+        cells[g].push_back(c);
+        redo[g][static_cast<std::size_t>(c)] = 1;
+      }
+    }
+    a.cells_visited += static_cast<int>(cells[g].size());
+  }
+  m.run(a, cells);
+  m.connect(a, &previous, &redo);
+  a.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return a;
+}
+
+}  // namespace auvloop::mesher
