@@ -10,8 +10,11 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-300}
 shift || true
-CC=clang CXX=clang++ scripts/build.sh build/fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DAUVLOOP_FUZZ=ON -DAUVLOOP_BUILD_BENCH=OFF -DAUVLOOP_WERROR=OFF
+launcher=()
+if command -v ccache >/dev/null; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
+CC=clang CXX=clang++ cmake -S . -B build/fuzz -G Ninja "${launcher[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DAUVLOOP_FUZZ=ON -DAUVLOOP_BUILD_BENCH=OFF -DAUVLOOP_WERROR=OFF >/dev/null
+cmake --build build/fuzz --target fuzz_requests
 mkdir -p build/fuzz/corpus
 cp -n examples/*.toml tests/fuzz/seeds/* build/fuzz/corpus/ 2>/dev/null || true
 cd build/fuzz

@@ -126,7 +126,8 @@ int compare_command(const RunOptions& o) {
   fmt::print("{:<36}", "index");
   for (const auto& l : labels) fmt::print(" {:>24}", l.substr(0, 24));
   fmt::print("\n");
-  for (const auto& [key, unused] : cols.front()) {
+  for (const auto& row : cols.front()) {
+    const std::string& key = row.first;
     fmt::print("{:<36}", key.substr(0, 36));
     for (const auto& c : cols) {
       const auto it =
