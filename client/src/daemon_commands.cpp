@@ -30,10 +30,7 @@ void print_status(const v1::DaemonStatus& s) {
 }
 
 v1::DaemonStatus fetch_status(DaemonClient& c) {
-  v1::DaemonStatus s;
-  auto ctx = c.context();
-  c.check(c.stub().Status(ctx.get(), v1::StatusRequest(), &s));
-  return s;
+  return c.call(&v1::Scheduler::Stub::Status, v1::StatusRequest());
 }
 
 int start(const ConnectOptions& o, const StartOptions& s) {
@@ -118,12 +115,7 @@ void register_daemon_commands(CLI::App& app, int& exit_code) {
   status_cmd->add_flag("--json", *json, "Machine-readable output");
   status_cmd->callback([o, json] {
     DaemonClient c(*o);
-    const auto st = fetch_status(c);
-    if (*json) {
-      fmt::print("{}\n", to_json_text(st));
-    } else {
-      print_status(st);
-    }
+    print_json_or(fetch_status(c), *json, print_status);
   });
 }
 

@@ -163,6 +163,12 @@ DaemonClient connect(const ConnectOptions& o) {
   return DaemonClient(o);
 }
 
+v1::IdRequest id_request(const std::string& id) {
+  v1::IdRequest r;
+  r.set_id(id);
+  return r;
+}
+
 std::string to_json_text(const google::protobuf::Message& m) {
   std::string out;
   google::protobuf::util::JsonPrintOptions p;

@@ -3,6 +3,7 @@
 // same flags and environment variables as the daemon's, and errors that say what to do.
 #pragma once
 
+#include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <stdexcept>
@@ -47,6 +48,17 @@ class DaemonClient {
   std::unique_ptr<grpc::ClientContext> context(bool streaming = false) const;
   // Throws DaemonUnavailable / RpcError for a failed status.
   void check(const grpc::Status& s) const;
+  // One unary call, checked: c.call(&v1::Scheduler::Stub::GetJob, request). `long_call`: no
+  // deadline (the daemon may take long, e.g. proposing a batch).
+  template <class Response, class Request>
+  Response call(grpc::Status (v1::Scheduler::Stub::*method)(grpc::ClientContext*, const Request&,
+                                                            Response*),
+                const Request& request, bool long_call = false) {
+    Response response;
+    auto ctx = context(long_call);
+    check(((*stub_).*method)(ctx.get(), request, &response));
+    return response;
+  }
   [[nodiscard]] const std::string& target() const { return target_; }
 
  private:
@@ -66,5 +78,15 @@ DaemonClient connect(const ConnectOptions& o);
 
 // Proto message as indented JSON (for --json).
 std::string to_json_text(const google::protobuf::Message& m);
+v1::IdRequest id_request(const std::string& id);
+// Prints `m` as JSON when `json`, else as `human` prints it.
+template <class Message, class Human>
+void print_json_or(const Message& m, bool json, Human&& human) {
+  if (json) {
+    std::printf("%s\n", to_json_text(m).c_str());
+  } else {
+    human(m);
+  }
+}
 
 }  // namespace auvloop::cli

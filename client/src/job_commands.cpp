@@ -36,29 +36,18 @@ int submit(const SubmitOptions& o) {
   v1::SubmitCaseRequest req;
   *req.mutable_source() = to_source(bundle);
   req.set_timeout_s(o.timeout_s);
-  v1::Job job;
-  auto ctx = c.context();
-  c.check(c.stub().SubmitCase(ctx.get(), req, &job));
+  auto job = c.call(&v1::Scheduler::Stub::SubmitCase, req);
   if (!o.wait) {
-    if (o.json) {
-      fmt::print("{}\n", to_json_text(job));
-    } else {
-      fmt::print("{} {}: {}{}\n", job.id(), job.name(), state_text(job.state()),
-                 job.cache_hit() ? " (from the cache, nothing was run)" : "");
-      if (!finished(job.state())) fmt::print("follow it with: auvloop watch {}\n", job.id());
-    }
+    print_json_or(job, o.json, [](const v1::Job& j) {
+      fmt::print("{} {}: {}{}\n", j.id(), j.name(), state_text(j.state()),
+                 j.cache_hit() ? " (from the cache, nothing was run)" : "");
+      if (!finished(j.state())) fmt::print("follow it with: auvloop watch {}\n", j.id());
+    });
     return finished(job.state()) ? exit_code_of(job.state()) : kOk;
   }
   watch(c, job.id(), o.json);
-  v1::IdRequest id;
-  id.set_id(job.id());
-  auto ctx2 = c.context();
-  c.check(c.stub().GetJob(ctx2.get(), id, &job));
-  if (o.json) {
-    fmt::print("{}\n", to_json_text(job));
-  } else {
-    print_job(job);
-  }
+  job = c.call(&v1::Scheduler::Stub::GetJob, id_request(job.id()));
+  print_json_or(job, o.json, print_job);
   return exit_code_of(job.state());
 }
 
@@ -67,28 +56,18 @@ int submit_optimization(const ConnectOptions& co, const std::string& file, bool 
   DaemonClient c = connect(co);
   v1::SubmitOptimizationRequest req;
   *req.mutable_source() = to_source(bundle);
-  v1::Optimization opt;
-  auto ctx = c.context(true);  // the first batch is proposed before the reply
-  c.check(c.stub().SubmitOptimization(ctx.get(), req, &opt));
+  // No deadline: the daemon proposes the first batch before it replies.
+  auto opt = c.call(&v1::Scheduler::Stub::SubmitOptimization, req, true);
   if (!wait) {
-    if (json) {
-      fmt::print("{}\n", to_json_text(opt));
-    } else {
-      fmt::print("{} {}: {}\nfollow it with: auvloop watch {}\n", opt.id(), opt.name(),
-                 state_text(opt.state()), opt.id());
-    }
+    print_json_or(opt, json, [](const v1::Optimization& o) {
+      fmt::print("{} {}: {}\nfollow it with: auvloop watch {}\n", o.id(), o.name(),
+                 state_text(o.state()), o.id());
+    });
     return kOk;
   }
   watch(c, opt.id(), json);
-  v1::IdRequest id;
-  id.set_id(opt.id());
-  auto ctx2 = c.context();
-  c.check(c.stub().GetOptimization(ctx2.get(), id, &opt));
-  if (json) {
-    fmt::print("{}\n", to_json_text(opt));
-  } else {
-    print_optimization(opt);
-  }
+  opt = c.call(&v1::Scheduler::Stub::GetOptimization, id_request(opt.id()));
+  print_json_or(opt, json, print_optimization);
   return exit_code_of(opt.state());
 }
 
@@ -98,44 +77,26 @@ int list_jobs(const ConnectOptions& co, bool all, const std::string& opt, int li
   req.set_active_only(!all);
   req.set_optimization_id(opt);
   req.set_limit(limit);
-  v1::ListJobsResponse resp;
-  auto ctx = c.context();
-  c.check(c.stub().ListJobs(ctx.get(), req, &resp));
-  if (json) {
-    fmt::print("{}\n", to_json_text(resp));
-    return kOk;
-  }
-  if (resp.jobs().empty()) {
-    fmt::print("no {}jobs{}\n", all ? "" : "queued or running ",
-               all ? "" : " (--all lists finished ones too)");
-    return kOk;
-  }
-  print_job_table_header();
-  for (const auto& j : resp.jobs()) print_job_row(j);
+  print_json_or(c.call(&v1::Scheduler::Stub::ListJobs, req), json,
+                [all](const v1::ListJobsResponse& resp) {
+                  if (resp.jobs().empty()) {
+                    fmt::print("no {}jobs{}\n", all ? "" : "queued or running ",
+                               all ? "" : " (--all lists finished ones too)");
+                    return;
+                  }
+                  print_job_table_header();
+                  for (const auto& j : resp.jobs()) print_job_row(j);
+                });
   return kOk;
 }
 
 int show_status(const ConnectOptions& co, const std::string& id, bool json) {
   DaemonClient c(co);
-  v1::IdRequest req;
-  req.set_id(id);
-  auto ctx = c.context();
   if (id.starts_with("o")) {
-    v1::Optimization o;
-    c.check(c.stub().GetOptimization(ctx.get(), req, &o));
-    if (json) {
-      fmt::print("{}\n", to_json_text(o));
-    } else {
-      print_optimization(o);
-    }
-    return kOk;
-  }
-  v1::Job j;
-  c.check(c.stub().GetJob(ctx.get(), req, &j));
-  if (json) {
-    fmt::print("{}\n", to_json_text(j));
+    print_json_or(c.call(&v1::Scheduler::Stub::GetOptimization, id_request(id)), json,
+                  print_optimization);
   } else {
-    print_job(j);
+    print_json_or(c.call(&v1::Scheduler::Stub::GetJob, id_request(id)), json, print_job);
   }
   return kOk;
 }
@@ -198,11 +159,7 @@ void register_job_commands(CLI::App& app, int& exit_code) {
   add_connect_options(cancel_cmd, *co);
   cancel_cmd->callback([=] {
     DaemonClient c(*co);
-    v1::IdRequest req;
-    req.set_id(*id);
-    v1::CancelResponse resp;
-    auto ctx = c.context();
-    c.check(c.stub().Cancel(ctx.get(), req, &resp));
+    const auto resp = c.call(&v1::Scheduler::Stub::Cancel, id_request(*id));
     fmt::print("{}: {} job(s) cancelled\n", *id, resp.jobs_cancelled());
   });
 
@@ -217,11 +174,7 @@ void register_job_commands(CLI::App& app, int& exit_code) {
       "themselves.)");
   resume_cmd->callback([=, &exit_code] {
     DaemonClient c(*co);
-    v1::IdRequest req;
-    req.set_id(*id);
-    v1::Optimization o;
-    auto ctx = c.context(true);
-    c.check(c.stub().Resume(ctx.get(), req, &o));
+    const auto o = c.call(&v1::Scheduler::Stub::Resume, id_request(*id), true);
     fmt::print("{} {}: resumed at batch {} with {} evaluations recorded\n", o.id(), o.name(),
                o.batch(), o.evaluations_done());
     if (*wait) exit_code = exit_code_of(watch(c, o.id()));

@@ -26,9 +26,7 @@ int list(const ConnectOptions& co, int limit, bool json) {
   DaemonClient c(co);
   v1::ListResultsRequest req;
   req.set_limit(limit);
-  v1::ListResultsResponse resp;
-  auto ctx = c.context();
-  c.check(c.stub().ListResults(ctx.get(), req, &resp));
+  const auto resp = c.call(&v1::Scheduler::Stub::ListResults, req);
   if (json) {
     fmt::print("{}\n", to_json_text(resp));
     return kOk;
@@ -47,11 +45,7 @@ int list(const ConnectOptions& co, int limit, bool json) {
 
 int show(const ConnectOptions& co, const std::string& id, bool json) {
   DaemonClient c(co);
-  v1::IdRequest req;
-  req.set_id(id);
-  v1::Result r;
-  auto ctx = c.context();
-  c.check(c.stub().GetResult(ctx.get(), req, &r));
+  const auto r = c.call(&v1::Scheduler::Stub::GetResult, id_request(id));
   if (json) {
     fmt::print("{}\n", to_json_text(r));
     return kOk;
@@ -73,10 +67,8 @@ int show(const ConnectOptions& co, const std::string& id, bool json) {
 std::vector<fs::path> export_files(const ConnectOptions& co, const std::string& id,
                                    const fs::path& out, bool (*keep)(const std::string&)) {
   DaemonClient c(co);
-  v1::IdRequest req;
-  req.set_id(id);
   auto ctx = c.context(true);
-  auto reader = c.stub().ExportResult(ctx.get(), req);
+  auto reader = c.stub().ExportResult(ctx.get(), id_request(id));
   fs::create_directories(out);
   std::vector<fs::path> written;
   std::ofstream file;

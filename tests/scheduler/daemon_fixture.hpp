@@ -146,24 +146,22 @@ class Daemon {
     return s == v1::SUCCEEDED || s == v1::FAILED || s == v1::CANCELLED;
   }
 
-  v1::Job wait_job(const std::string& id, double timeout_s = 120) {
+  // Polls `get` until what it returns has finished (or the timeout); returns the last answer.
+  template <class Get>
+  static auto wait_until_finished(Get&& get, double timeout_s) {
     const auto deadline = std::chrono::steady_clock::now() +
                           std::chrono::milliseconds(static_cast<long>(timeout_s * 1000));
     for (;;) {
-      auto j = job(id);
-      if (finished(j.state()) || std::chrono::steady_clock::now() > deadline) return j;
+      auto item = get();
+      if (finished(item.state()) || std::chrono::steady_clock::now() > deadline) return item;
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
   }
-
+  v1::Job wait_job(const std::string& id, double timeout_s = 120) {
+    return wait_until_finished([&] { return job(id); }, timeout_s);
+  }
   v1::Optimization wait_optimization(const std::string& id, double timeout_s = 300) {
-    const auto deadline = std::chrono::steady_clock::now() +
-                          std::chrono::milliseconds(static_cast<long>(timeout_s * 1000));
-    for (;;) {
-      auto o = optimization(id);
-      if (finished(o.state()) || std::chrono::steady_clock::now() > deadline) return o;
-      std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    }
+    return wait_until_finished([&] { return optimization(id); }, timeout_s);
   }
 
  private:
