@@ -143,7 +143,7 @@ int run_optimize(const std::string& file, const std::string& out_arg) {
                                      {"settling time (s)", "settling_time_s"},
                                      {"peak (deg)", "peak_deg"},
                                      {"overshoot (%)", "overshoot_percent"}}) {
-      auto cell = [&](const json& m) {
+      auto cell = [&, key = key](const json& m) {
         return m[key].is_null() ? std::string("not settled")
                                 : fmt::format("{:.4g}", m[key].get<double>());
       };

@@ -139,7 +139,10 @@ Grid fin_grid(const geometry::FinGeometry& fin, const FinGridSpec& s) {
   const SectionLoop loop = section_loop(sec, s.chordwise_cells, s.trailing_edge_fan);
   const auto dist = s.normal_cells > 0 ? stretched_nodes(0, s.extent, s.first_cell, s.normal_cells)
                                        : grown_nodes(0, s.extent, s.first_cell, s.growth);
-  const auto [rho, k_tip] = span_stations(fin, s);
+  // (Named copies, not a structured binding: clang 14 cannot capture one in a lambda.)
+  const auto stations = span_stations(fin, s);
+  const auto& rho = std::get<0>(stations);
+  const int k_tip = std::get<1>(stations);
   const int np = loop.size(), nj = static_cast<int>(dist.size()) - 1;
   const int nk = static_cast<int>(rho.size()) - 1;
   const double tip = fin.set().tip_radius;

@@ -427,7 +427,8 @@ struct OversetAssembler::Impl {
       });
     }
     while (!queue.empty()) {
-      const auto [dc, c] = queue.top();
+      const double dc = queue.top().first;  // (not a structured binding: captured below)
+      const int c = queue.top().second;
       queue.pop();
       if (dc > dist[static_cast<std::size_t>(c)]) continue;
       d.each_neighbour(c, [&](int n) {
