@@ -63,7 +63,9 @@ int stop(const ConnectOptions& o, bool drain) {
   // A daemon going away may cut its own reply short: what counts is that it goes.
   if (st.error_code() != grpc::StatusCode::CANCELLED) c.check(st);
   // Wait until it is gone, so that a following `daemon start` finds the socket free.
-  for (int i = 0; i < 200; ++i) {
+  // A drain lasts as long as the running cases; otherwise the daemon is gone within seconds.
+  for (int i = 0; drain || i < 200; ++i) {
+    if (drain && i % 200 == 199) fmt::print(stderr, "waiting for the running cases to end...\n");
     try {
       DaemonClient probe(o);
       fetch_status(probe);

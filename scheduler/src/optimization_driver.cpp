@@ -107,8 +107,10 @@ void Scheduler::drive(std::int64_t id) {
         continue;
       }
       auto job = store_->evaluation_job(id, batch->index, static_cast<int>(i));
-      if (job && job->active()) continue;
-      if (job && job->state != "cancelled") {
+      // A job still stopping after its optimisation was cancelled is replaced on resume.
+      const bool replaced = job && superseded_.contains(job->id);
+      if (job && job->active() && !replaced) continue;
+      if (job && !job->active() && job->state != "cancelled") {
         tell(id, *job);  // it ended, but the daemon stopped before the optimizer heard of it
         continue;
       }
@@ -128,6 +130,9 @@ void Scheduler::tell(std::int64_t id, const JobRecord& job) {
   }
   Runtime& rt = runtime(id);
   if (rt.record.state != "running") return;  // cancelled: the result stays in the cache
+  // Only the newest job of an evaluation speaks for it (an older one was replaced on resume).
+  const auto newest = store_->evaluation_job(id, job.batch, job.point);
+  if (!newest || newest->id != job.id) return;
   const auto batch = rt.optimizer.ask();
   const auto point = static_cast<std::size_t>(job.point);
   if (!batch || batch->index != job.batch || point >= batch->points.size()) return;
@@ -186,6 +191,7 @@ int Scheduler::cancel_optimization(std::int64_t id) {
     ++n;
     if (job.state == "running") {
       cancelling_.insert(job.id);
+      superseded_.insert(job.id);
       backend_->cancel(job_id(job.id));
     } else {
       job.state = "cancelled";

@@ -114,13 +114,21 @@ void Scheduler::stop(bool drain) {
     Lock lock(mutex_);
     if (!started_ || stopping_) return;
     stopping_ = true;
+    draining_ = drain;
     if (drain) {
       state_changed_.wait(lock, [this] { return running_.empty(); });
     }
   }
+  // Workers first (SIGTERM, then SIGKILL after the grace period); their jobs stay `running` in the
+  // store and are queued again at the next start. The dispatcher thread outlives them because
+  // the workers it spawned die with it (PR_SET_PDEATHSIG is tied to the spawning thread).
+  backend_->stop_all();
+  {
+    Lock lock(mutex_);
+    dispatcher_exit_ = true;
+  }
   wake_dispatcher_.notify_all();
   if (dispatcher_.joinable()) dispatcher_.join();
-  backend_->stop_all();  // their jobs stay `running` in the store: queued again at the next start
   Lock lock(mutex_);
   changed();
 }
@@ -130,6 +138,11 @@ void Scheduler::changed() {
   state_changed_.notify_all();
 }
 
+bool Scheduler::stopping() {
+  Lock lock(mutex_);
+  return stopping_;
+}
+
 std::uint64_t Scheduler::version() {
   Lock lock(mutex_);
   return version_;
@@ -137,7 +150,7 @@ std::uint64_t Scheduler::version() {
 
 std::uint64_t Scheduler::wait_for_change(std::uint64_t seen, std::chrono::milliseconds timeout) {
   Lock lock(mutex_);
-  state_changed_.wait_for(lock, timeout, [&] { return version_ != seen || stopping_; });
+  state_changed_.wait_for(lock, timeout, [&] { return version_ != seen; });
   return version_;
 }
 
@@ -205,9 +218,9 @@ void Scheduler::finish_job(JobRecord& job) {
 
 void Scheduler::dispatch_loop() {
   Lock lock(mutex_);
-  while (!stopping_) {
+  while (!dispatcher_exit_) {
     try {
-      launch_ready(lock);
+      if (!stopping_) launch_ready(lock);
     } catch (const std::exception& e) {
       spdlog::error("dispatch: {}", e.what());  // never let one bad job stop the daemon
     }
@@ -286,13 +299,25 @@ std::string Scheduler::failure_text(const JobRecord& job, const ExitInfo& exit) 
 
 void Scheduler::on_finished(const std::string& id_text, const ExitInfo& exit) {
   Lock lock(mutex_);
+  // Whatever happens below, watchers and a draining stop() must hear of it (declared after the
+  // lock, so it runs while the lock is still held).
+  struct Notify {
+    Scheduler& s;
+    ~Notify() {
+      s.changed();
+      s.wake_dispatcher_.notify_all();
+    }
+  } notify{*this};
   const std::int64_t id = parse_id(id_text, 'j');
   running_.erase(id);
   const bool cancelled = cancelling_.erase(id) > 0;
-  auto job = store_->job(id);
-  if (!job || job->state != "running") return;
-  if (stopping_ && !cancelled) return;  // stays `running`: queued again at the next start
+  superseded_.erase(id);
+  // A stop that kills its workers leaves their jobs `running`: queued again at the next start.
+  // A draining stop records them as they end.
+  if (stopping_ && !draining_ && !cancelled) return;
   try {
+    auto job = store_->job(id);
+    if (!job || job->state != "running") return;
     StateStore::Transaction t(*store_);
     job->finished_ms = now_ms();
     if (cancelled) {
@@ -310,8 +335,6 @@ void Scheduler::on_finished(const std::string& id_text, const ExitInfo& exit) {
   } catch (const std::exception& e) {
     spdlog::error("job {}: recording its end failed: {}", id_text, e.what());
   }
-  changed();
-  wake_dispatcher_.notify_all();
 }
 
 int Scheduler::cancel_job(std::int64_t id) {

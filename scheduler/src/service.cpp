@@ -22,6 +22,8 @@ grpc::StatusCode code_of(Kind k) {
       return grpc::StatusCode::FAILED_PRECONDITION;
     case Kind::resource_exhausted:
       return grpc::StatusCode::RESOURCE_EXHAUSTED;
+    case Kind::unavailable:
+      return grpc::StatusCode::UNAVAILABLE;
   }
   return grpc::StatusCode::UNKNOWN;
 }
@@ -158,6 +160,10 @@ grpc::Status SchedulerService::Watch(grpc::ServerContext* ctx, const v1::IdReque
       }
       if (terminal(state) || ctx->IsCancelled()) return;
       seen = scheduler_.wait_for_change(seen, std::chrono::milliseconds(1000));
+      if (scheduler_.stopping()) {
+        throw RequestError(RequestError::Kind::unavailable,
+                           "the daemon is stopping; the job continues after its restart");
+      }
     }
   });
 }

@@ -87,6 +87,19 @@ class Daemon {
     pid_ = -1;
     return status;
   }
+  // Waits for the daemon to exit by itself; false if it still runs after `timeout_s`.
+  bool wait_exit(double timeout_s) {
+    const auto deadline = std::chrono::steady_clock::now() +
+                          std::chrono::milliseconds(static_cast<long>(timeout_s * 1000));
+    while (std::chrono::steady_clock::now() < deadline) {
+      if (waitpid(pid_, nullptr, WNOHANG) == pid_) {
+        pid_ = -1;
+        return true;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    return false;
+  }
   [[nodiscard]] bool alive() const { return pid_ > 0 && ::kill(pid_, 0) == 0; }
 
   v1::Scheduler::Stub& stub() { return *stub_; }

@@ -149,6 +149,25 @@ TEST(Daemon, CancelStopsARunningJob) {
   EXPECT_EQ(d.wait_job(job.id(), 30).state(), v1::CANCELLED);
 }
 
+TEST(Daemon, DrainingStopRecordsTheRunningJobAndExits) {
+  Daemon d({"--no-plots"}, {{"AUVLOOP_WORKER_FAILPOINT", "hang:slow"}});
+  d.start();
+  const auto job = d.submit(heading_case("slow"), 1.0);  // ends by its 1 s timeout
+  for (int i = 0; i < 500 && d.job(job.id()).state() != v1::RUNNING; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  v1::ShutdownRequest req;
+  req.set_drain(true);
+  v1::ShutdownResponse resp;
+  auto c = Daemon::ctx();
+  d.stub().Shutdown(c.get(), req, &resp);  // (the reply may be cut short by the exit)
+  ASSERT_TRUE(d.wait_exit(30)) << "a draining stop must end once its jobs have ended";
+  d.start();
+  const auto after = d.job(job.id());
+  EXPECT_EQ(after.state(), v1::FAILED);  // recorded during the drain, not queued again
+  EXPECT_NE(after.failure().find("timed out"), std::string::npos) << after.failure();
+}
+
 TEST(Daemon, CorruptCacheEntryIsDetectedAndRecomputed) {
   Daemon d({"--no-plots"});
   d.start();

@@ -118,6 +118,8 @@ TEST(DaemonResume, CrashingEvaluationsAreFailedEvaluationsAndCancelledRunsResume
   ASSERT_TRUE(d.stub().Resume(c2.get(), req, &resumed).ok());
   const auto done = d.wait_optimization(id);
   EXPECT_EQ(done.state(), v1::SUCCEEDED);
+  // Points that were running when it was cancelled are computed again, not counted as failed.
+  EXPECT_EQ(done.evaluations_failed(), 0);
   const auto runs = d.executions();
   EXPECT_EQ(std::set<std::string>(runs.begin(), runs.end()).size(), runs.size());
 }

@@ -34,7 +34,13 @@ namespace auvloop::scheduler {
 // A request the scheduler refuses; `kind` maps onto an RPC status code.
 class RequestError : public std::runtime_error {
  public:
-  enum class Kind { invalid_argument, not_found, failed_precondition, resource_exhausted };
+  enum class Kind {
+    invalid_argument,
+    not_found,
+    failed_precondition,
+    resource_exhausted,
+    unavailable
+  };
   RequestError(Kind k, const std::string& message) : std::runtime_error(message), kind(k) {}
   Kind kind;
 };
@@ -90,6 +96,7 @@ class Scheduler {
   // Blocks until the state changes after `seen` (or the timeout); returns the new version.
   std::uint64_t wait_for_change(std::uint64_t seen, std::chrono::milliseconds timeout);
   std::uint64_t version();
+  bool stopping();
 
   struct Runtime;  // a running optimisation in memory: study, optimizer, record (opaque)
 
@@ -123,10 +130,13 @@ class Scheduler {
   std::unique_ptr<StateStore> store_;
   std::map<std::int64_t, std::string> running_;  // job id -> key
   std::set<std::int64_t> cancelling_;
+  // Running jobs of a cancelled optimisation: a resume replaces them with fresh jobs.
+  std::set<std::int64_t> superseded_;
   std::map<std::int64_t, double> progress_;  // job id -> simulated time (s)
   std::map<std::int64_t, std::unique_ptr<Runtime>> runtimes_;
   std::uint64_t version_ = 0;
-  bool started_ = false, stopping_ = false, driving_ = false;
+  bool started_ = false, stopping_ = false, draining_ = false, driving_ = false;
+  bool dispatcher_exit_ = false;  // after stop(): the workers are gone
   std::chrono::steady_clock::time_point started_at_;
   std::thread dispatcher_;
 };
