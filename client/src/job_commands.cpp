@@ -10,14 +10,6 @@
 namespace auvloop::cli {
 namespace {
 
-v1::CaseSource to_source(const scheduler::SourceBundle& b) {
-  v1::CaseSource s;
-  s.set_source_name(b.source_name);
-  s.set_toml(b.toml);
-  for (const auto& [name, text] : b.files) (*s.mutable_files())[name] = text;
-  return s;
-}
-
 int exit_code_of(v1::State s) {
   return s == v1::SUCCEEDED ? kOk : kFailed;
 }
@@ -34,7 +26,7 @@ int submit(const SubmitOptions& o) {
   const auto bundle = scheduler::bundle_case_file(o.file);
   DaemonClient c = connect(o.connect);
   v1::SubmitCaseRequest req;
-  *req.mutable_source() = to_source(bundle);
+  *req.mutable_source() = scheduler::to_proto(bundle);
   req.set_timeout_s(o.timeout_s);
   auto job = c.call(&v1::Scheduler::Stub::SubmitCase, req);
   if (!o.wait) {
@@ -55,7 +47,7 @@ int submit_optimization(const ConnectOptions& co, const std::string& file, bool 
   const auto bundle = scheduler::bundle_study_file(file);
   DaemonClient c = connect(co);
   v1::SubmitOptimizationRequest req;
-  *req.mutable_source() = to_source(bundle);
+  *req.mutable_source() = scheduler::to_proto(bundle);
   // No deadline: the daemon proposes the first batch before it replies.
   auto opt = c.call(&v1::Scheduler::Stub::SubmitOptimization, req, true);
   if (!wait) {

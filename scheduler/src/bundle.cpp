@@ -75,6 +75,18 @@ engine::CaseSpec parse_bundled_case(const FileSource& files, const std::string& 
                             bundle_vehicle_resolver(files, fs::path(name).parent_path().string()));
 }
 
+v1::CaseSource to_proto(const SourceBundle& b) {
+  v1::CaseSource s;
+  s.set_source_name(b.source_name);
+  s.set_toml(b.toml);
+  s.mutable_files()->insert(b.files.begin(), b.files.end());
+  return s;
+}
+
+SourceBundle bundle_from_proto(const v1::CaseSource& s) {
+  return {s.source_name(), s.toml(), {s.files().begin(), s.files().end()}};
+}
+
 json to_json(const SourceBundle& b) {
   return {{"source_name", b.source_name}, {"toml", b.toml}, {"files", b.files}};
 }

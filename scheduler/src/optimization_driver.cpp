@@ -31,14 +31,7 @@ void save(Scheduler::Runtime& rt, StateStore& store) {
 }  // namespace
 
 v1::Optimization Scheduler::submit_optimization(const SourceBundle& source, double timeout_s) {
-  if (source.toml.size() > kMaxSourceBytes || source.files.size() > kMaxSourceFiles) {
-    throw RequestError(Kind::invalid_argument, "the request is too large");
-  }
-  for (const auto& [name, text] : source.files) {
-    if (name.size() > 4096 || text.size() > kMaxSourceBytes) {
-      throw RequestError(Kind::invalid_argument, "an attached file is too large");
-    }
-  }
+  check_source_size(source);
   Study study;
   try {
     study = parse_study_bundle(source);
@@ -123,7 +116,7 @@ void Scheduler::drive(std::int64_t id) {
   }
 }
 
-void Scheduler::tell(std::int64_t id, const JobRecord& job) {
+void Scheduler::tell(std::int64_t id, const JobRecord& job, const results::StoredRun* run) {
   if (!runtimes_.contains(id)) {  // an ended optimisation needs no replay to ignore a result
     const auto rec = store_->optimization(id);
     if (!rec || rec->state != "running") return;
@@ -140,9 +133,11 @@ void Scheduler::tell(std::int64_t id, const JobRecord& job) {
   if (point < partial.size() && partial[point]) return;
   Outcome o;
   if (job.state == "succeeded") {
-    const auto hit = cache_.lookup(job.key);
-    o = hit.run ? objective_from_metrics(rt.study, hit.run->metrics, job.duration_s)
-                : Outcome{std::nullopt, "the result vanished from the cache"};
+    std::optional<results::StoredRun> looked_up;
+    if (!run) looked_up = cache_.lookup(job.key).run;  // a recovered job: read it back
+    const results::StoredRun* r = run ? run : (looked_up ? &*looked_up : nullptr);
+    o = r ? objective_from_metrics(rt.study, r->metrics, job.duration_s)
+          : Outcome{std::nullopt, "the result vanished from the cache"};
   } else {
     o.failure = job.failure.empty() ? job.state : job.failure;
   }

@@ -34,15 +34,7 @@ std::int64_t parse_id(const std::string& id, char kind) {
   }
   return n;
 }
-std::string job_id(std::int64_t id) {
-  return fmt::format("j{}", id);
-}
-std::string optimization_id(std::int64_t id) {
-  return fmt::format("o{}", id);
-}
-
-namespace {
-void check_source(const SourceBundle& s) {
+void check_source_size(const SourceBundle& s) {
   if (s.toml.size() > kMaxSourceBytes || s.source_name.size() > 4096 ||
       s.files.size() > kMaxSourceFiles) {
     throw RequestError(Kind::invalid_argument,
@@ -56,6 +48,14 @@ void check_source(const SourceBundle& s) {
   }
 }
 
+std::string job_id(std::int64_t id) {
+  return fmt::format("j{}", id);
+}
+std::string optimization_id(std::int64_t id) {
+  return fmt::format("o{}", id);
+}
+
+namespace {
 // The last lines of a worker's log, for a failure message.
 std::string log_tail(const fs::path& log, std::size_t max_lines = 6) {
   std::ifstream in(log);
@@ -155,7 +155,7 @@ std::uint64_t Scheduler::wait_for_change(std::uint64_t seen, std::chrono::millis
 }
 
 v1::Job Scheduler::submit_case(const SourceBundle& source, double timeout_s) {
-  check_source(source);
+  check_source_size(source);
   engine::CaseSpec spec;
   try {
     spec = parse_case_bundle(source);
@@ -199,21 +199,21 @@ bool Scheduler::complete_from_cache(JobRecord& job) {
   job.failure = job.state == "failed" ? m["failure"].get<std::string>() : "";
   job.finished_ms = now_ms();
   if (job.started_ms == 0) job.started_ms = job.finished_ms;
-  finish_job(job);
+  finish_job(job, &*hit.run);
   return true;
 }
 
-void Scheduler::finish_job(JobRecord& job) {
+void Scheduler::finish_job(JobRecord& job, const results::StoredRun* run) {
   store_->update_job(job);
   progress_.erase(job.id);
-  if (job.state == "succeeded" || (job.state == "failed" && cache_.lookup(job.key).run)) {
+  if (run) {  // the job ended with a (verified) cached run: index it
     const auto existing = store_->result(job.key);
     store_->record_result({job.key, job.name, job.plant,
                            job.state == "succeeded" ? "completed" : "failed", job.failure,
                            existing ? existing->created_ms : job.finished_ms,
                            existing ? existing->job_id : job.id});
   }
-  if (job.optimization_id) tell(*job.optimization_id, job);
+  if (job.optimization_id) tell(*job.optimization_id, job, run);
 }
 
 void Scheduler::dispatch_loop() {

@@ -8,6 +8,9 @@
 
 namespace auvloop::scheduler {
 
+// Throws RequestError (invalid_argument) when a request's files exceed the limits.
+void check_source_size(const SourceBundle& s);
+
 struct Scheduler::Runtime {
   Study study;
   optimizer::SurrogateOptimizer optimizer;

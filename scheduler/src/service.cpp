@@ -46,10 +46,6 @@ bool same(const std::string& a, const std::string& b) {  // constant time in the
   return d == 0;
 }
 
-SourceBundle bundle_of(const v1::CaseSource& s) {
-  return {s.source_name(), s.toml(), {s.files().begin(), s.files().end()}};
-}
-
 int limit_of(int requested) {
   return requested > 0 ? std::min(requested, 100000) : 200;
 }
@@ -92,7 +88,7 @@ grpc::Status SchedulerService::SubmitCase(grpc::ServerContext* ctx,
   return guarded(ctx, [&] {
     if (!(req->timeout_s() >= 0))
       throw RequestError(Kind::invalid_argument, "timeout_s must be >= 0");
-    *out = scheduler_.submit_case(bundle_of(req->source()), req->timeout_s());
+    *out = scheduler_.submit_case(bundle_from_proto(req->source()), req->timeout_s());
   });
 }
 
@@ -102,7 +98,7 @@ grpc::Status SchedulerService::SubmitOptimization(grpc::ServerContext* ctx,
   return guarded(ctx, [&] {
     if (!(req->timeout_s() >= 0))
       throw RequestError(Kind::invalid_argument, "timeout_s must be >= 0");
-    *out = scheduler_.submit_optimization(bundle_of(req->source()), req->timeout_s());
+    *out = scheduler_.submit_optimization(bundle_from_proto(req->source()), req->timeout_s());
   });
 }
 

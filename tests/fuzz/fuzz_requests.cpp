@@ -32,9 +32,6 @@ void refused_or_parsed(F&& parse) {
   }
 }
 
-scheduler::SourceBundle bundle_of(const v1::CaseSource& s) {
-  return {s.source_name(), s.toml(), {s.files().begin(), s.files().end()}};
-}
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -46,11 +43,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string bytes(reinterpret_cast<const char*>(data), size);
   v1::SubmitCaseRequest case_request;
   if (case_request.ParseFromString(bytes)) {
-    refused_or_parsed([&] { scheduler::parse_case_bundle(bundle_of(case_request.source())); });
+    refused_or_parsed(
+        [&] { scheduler::parse_case_bundle(scheduler::bundle_from_proto(case_request.source())); });
   }
   v1::SubmitOptimizationRequest study_request;
   if (study_request.ParseFromString(bytes)) {
-    refused_or_parsed([&] { scheduler::parse_study_bundle(bundle_of(study_request.source())); });
+    refused_or_parsed([&] {
+      scheduler::parse_study_bundle(scheduler::bundle_from_proto(study_request.source()));
+    });
   }
   const scheduler::SourceBundle as_text{"fuzz.toml", bytes, {{"case.toml", bytes}}};
   refused_or_parsed([&] { scheduler::parse_case_bundle(as_text); });

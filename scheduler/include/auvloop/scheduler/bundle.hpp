@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "auvloop/engine/case.hpp"
+#include "auvloop/v1/scheduler.pb.h"
 
 namespace auvloop::scheduler {
 
@@ -48,6 +49,9 @@ engine::CaseSpec parse_bundled_case(const FileSource& files, const std::string& 
 std::string bundled_name(const std::string& dir, const std::string& written);
 
 nlohmann::json to_json(const SourceBundle& b);
+// The protocol's form of a bundle (proto/auvloop/v1/scheduler.proto, CaseSource), both ways.
+v1::CaseSource to_proto(const SourceBundle& b);
+SourceBundle bundle_from_proto(const v1::CaseSource& s);
 // Throws std::invalid_argument when `j` is not a bundle.
 SourceBundle bundle_from_json(const nlohmann::json& j);
 

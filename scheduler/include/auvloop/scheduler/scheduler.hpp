@@ -109,14 +109,17 @@ class Scheduler {
   bool complete_from_cache(JobRecord& job);
   void on_progress(const std::string& id, double t, double total);
   void on_finished(const std::string& id, const ExitInfo& exit);
-  void finish_job(JobRecord& job);  // stores the final state, tells its optimisation
+  // Stores the final state, indexes the cached run (when the job ended with one, as `run`) and
+  // tells the job's optimisation.
+  void finish_job(JobRecord& job, const results::StoredRun* run = nullptr);
   std::string failure_text(const JobRecord& job, const ExitInfo& exit) const;
   void changed();
 
   // Optimisation driver (optimization_driver.cpp); all with the lock held.
   Runtime& runtime(std::int64_t id);
   void drive(std::int64_t id);
-  void tell(std::int64_t id, const JobRecord& job);
+  // `run`: the job's cached run when the caller has it already (saves a checksum pass).
+  void tell(std::int64_t id, const JobRecord& job, const results::StoredRun* run = nullptr);
   JobRecord evaluation_job(const OptimizationRecord& rec, const Runtime& rt,
                            const optimizer::Batch& batch, std::size_t point);
   v1::Optimization to_proto(const OptimizationRecord& rec, bool with_evaluations);
