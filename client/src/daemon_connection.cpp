@@ -57,7 +57,9 @@ DaemonClient::DaemonClient(const ConnectOptions& o) : timeout_s_(o.timeout_s) {
                       token_file.string()));
     }
   } else {
-    target_ = "unix:" + resolved_socket(o).string();
+    const fs::path socket = resolved_socket(o);
+    scheduler::check_socket_directory(socket);
+    target_ = "unix:" + socket.string();
   }
   channel_ = grpc::CreateCustomChannel(target_, grpc::InsecureChannelCredentials(), args);
   stub_ = v1::Scheduler::NewStub(channel_);

@@ -18,6 +18,7 @@
 #include <thread>
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include "auvloop/scheduler/backend.hpp"
 
@@ -152,10 +153,25 @@ class LocalProcessBackend final : public ExecutionBackend {
       std::lock_guard lock(mutex_);
       children_.erase(id);
     }
-    if (callbacks_.finished) callbacks_.finished(id, exit);
+    guarded(id, [&] {
+      if (callbacks_.finished) callbacks_.finished(id, exit);
+    });
     std::lock_guard lock(mutex_);
     --active_;
     ended_.notify_all();
+  }
+
+  // A callback that throws must not end the monitor thread (std::terminate) nor leave active_
+  // counting it: the error is logged and the monitor goes on.
+  template <class F>
+  static void guarded(const std::string& id, F&& f) {
+    try {
+      f();
+    } catch (const std::exception& e) {
+      spdlog::error("job {}: {}", id, e.what());
+    } catch (...) {
+      spdlog::error("job {}: unknown error in a callback", id);
+    }
   }
 
   // Reads what is available (waiting up to 50 ms); returns true at end of file.
@@ -171,7 +187,7 @@ class LocalProcessBackend final : public ExecutionBackend {
       double t = 0, total = 0;
       if (std::sscanf(buffer.substr(0, eol).c_str(), "progress %lf %lf", &t, &total) == 2 &&
           callbacks_.progress) {
-        callbacks_.progress(id, t, total);
+        guarded(id, [&] { callbacks_.progress(id, t, total); });
       }
       buffer.erase(0, eol + 1);
     }

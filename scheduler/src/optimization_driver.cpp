@@ -38,6 +38,14 @@ v1::Optimization Scheduler::submit_optimization(const SourceBundle& source, doub
   } catch (const input::InputError& e) {
     throw RequestError(Kind::invalid_argument, fmt::format("invalid optimisation:\n{}", e.what()));
   }
+  const long evaluations = study.config.initial_points +
+                           static_cast<long>(study.config.max_iterations) * study.config.batch_size;
+  if (evaluations > kMaxEvaluations) {
+    throw RequestError(Kind::invalid_argument,
+                       fmt::format("the optimisation may ask for {} evaluations (initial_points + "
+                                   "max_iterations x batch_size); at most {} are accepted",
+                                   evaluations, kMaxEvaluations));
+  }
   OptimizationRecord rec;
   rec.name = study.name;
   rec.bundle = to_json(source);
@@ -47,11 +55,11 @@ v1::Optimization Scheduler::submit_optimization(const SourceBundle& source, doub
   rec.created_ms = rec.updated_ms = now_ms();
   Lock lock(mutex_);
   if (stopping_) throw RequestError(Kind::failed_precondition, "the daemon is shutting down");
-  StateStore::Transaction t(*store_);
-  store_->insert_optimization(rec);
-  runtimes_[rec.id] = std::make_unique<Runtime>(Runtime{std::move(study), std::move(opt), rec});
-  drive(rec.id);
-  t.commit();
+  atomically([&] {
+    store_->insert_optimization(rec);
+    runtimes_[rec.id] = std::make_unique<Runtime>(Runtime{std::move(study), std::move(opt), rec});
+    drive(rec.id);
+  });
   changed();
   wake_dispatcher_.notify_all();
   return to_proto(*store_->optimization(rec.id), false);
@@ -100,10 +108,9 @@ void Scheduler::drive(std::int64_t id) {
         continue;
       }
       auto job = store_->evaluation_job(id, batch->index, static_cast<int>(i));
-      // A job still stopping after its optimisation was cancelled is replaced on resume.
-      const bool replaced = job && superseded_.contains(job->id);
-      if (job && job->active() && !replaced) continue;
-      if (job && !job->active() && job->state != "cancelled") {
+      if (job && job->active()) continue;
+      // A cancelled job (with its optimisation, perhaps still stopping) is replaced on resume.
+      if (job && job->state != "cancelled") {
         tell(id, *job);  // it ended, but the daemon stopped before the optimizer heard of it
         continue;
       }
@@ -158,7 +165,8 @@ JobRecord Scheduler::evaluation_job(const OptimizationRecord& rec, const Runtime
   JobRecord j;
   j.name = fmt::format("{} #{}.{} {}", rec.name, batch.index, point, batch.origins[point]);
   j.key = results::content_hash(engine::canonical_json(spec));
-  j.payload = {{"bundle", rec.bundle}, {"case", rt.study.case_name}, {"gains", gains}};
+  // The study's files are stored once, with the optimisation; launch() adds them for the worker.
+  j.payload = {{"case", rt.study.case_name}, {"gains", gains}};
   j.plant = spec.plant == engine::PlantKind::derivative ? "derivative" : "linearized";
   j.duration_s = spec.duration;
   j.timeout_s = rec.timeout_s;
@@ -175,27 +183,25 @@ int Scheduler::cancel_optimization(std::int64_t id) {
   if (!rec)
     throw RequestError(Kind::not_found, fmt::format("no optimisation {}", optimization_id(id)));
   if (rec->state != "running") return 0;
-  StateStore::Transaction t(*store_);
-  rec->state = "cancelled";
-  rec->failure = "cancelled by the user";
-  rec->updated_ms = now_ms();
-  store_->update_optimization(*rec);
-  runtimes_.erase(id);
+  std::vector<std::int64_t> running;
   int n = 0;
-  for (auto& job : store_->jobs({id, true, 1 << 30})) {
-    ++n;
-    if (job.state == "running") {
-      cancelling_.insert(job.id);
-      superseded_.insert(job.id);
-      backend_->cancel(job_id(job.id));
-    } else {
+  atomically([&] {
+    rec->state = "cancelled";
+    rec->failure = "cancelled by the user";
+    rec->updated_ms = now_ms();
+    store_->update_optimization(*rec);
+    runtimes_.erase(id);
+    // Recorded before the workers are stopped, so a daemon killed meanwhile does not run them.
+    for (auto& job : store_->jobs({id, true, 1 << 30})) {
+      if (job.state == "running") running.push_back(job.id);
       job.state = "cancelled";
       job.failure = "the optimisation was cancelled";
       job.finished_ms = now_ms();
       store_->update_job(job);
+      ++n;
     }
-  }
-  t.commit();
+  });
+  for (const auto j : running) backend_->cancel(job_id(j));
   changed();
   return n;
 }
@@ -214,14 +220,14 @@ v1::Optimization Scheduler::resume(std::int64_t id) {
                        fmt::format("optimisation {} has finished ({}); nothing to resume",
                                    optimization_id(id), rec->optimizer.value("stop_reason", "")));
   }
-  StateStore::Transaction t(*store_);
-  rec->state = "running";
-  rec->failure.clear();
-  rec->updated_ms = now_ms();
-  store_->update_optimization(*rec);
-  runtimes_.erase(id);
-  drive(id);
-  t.commit();
+  atomically([&] {
+    rec->state = "running";
+    rec->failure.clear();
+    rec->updated_ms = now_ms();
+    store_->update_optimization(*rec);
+    runtimes_.erase(id);
+    drive(id);
+  });
   changed();
   wake_dispatcher_.notify_all();
   return to_proto(*store_->optimization(id), false);

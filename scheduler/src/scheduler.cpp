@@ -6,6 +6,7 @@
 
 #include <charconv>
 #include <fstream>
+#include <set>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -95,10 +96,8 @@ void Scheduler::start() {
   if (requeued > 0)
     spdlog::info("{} job(s) that were running when the daemon stopped are queued again", requeued);
   for (const auto& rec : store_->optimizations(1 << 30, true)) {
-    StateStore::Transaction t(*store_);
     try {
-      drive(rec.id);
-      t.commit();
+      atomically([&] { drive(rec.id); });
       spdlog::info("optimisation {} ({}) continues", optimization_id(rec.id), rec.name);
     } catch (const std::exception& e) {
       spdlog::error("optimisation {} cannot continue: {}", optimization_id(rec.id), e.what());
@@ -172,10 +171,10 @@ v1::Job Scheduler::submit_case(const SourceBundle& source, double timeout_s) {
   job.created_ms = now_ms();
   Lock lock(mutex_);
   if (stopping_) throw RequestError(Kind::failed_precondition, "the daemon is shutting down");
-  StateStore::Transaction t(*store_);
-  store_->insert_job(job);
-  complete_from_cache(job);
-  t.commit();
+  atomically([&] {
+    store_->insert_job(job);
+    complete_from_cache(job);
+  });
   changed();
   wake_dispatcher_.notify_all();
   return to_proto(job);
@@ -194,7 +193,8 @@ bool Scheduler::complete_from_cache(JobRecord& job) {
   }
   if (hit.state != results::ResultCache::State::valid) return false;
   const auto& m = hit.run->manifest;
-  job.cache_hit = job.state != "running";
+  // Its own result only when it had run before (a job queued again after a daemon restart).
+  job.cache_hit = job.state != "running" && job.attempts == 0;
   job.state = m.value("failure", json()).is_string() ? "failed" : "succeeded";
   job.failure = job.state == "failed" ? m["failure"].get<std::string>() : "";
   job.finished_ms = now_ms();
@@ -237,12 +237,12 @@ void Scheduler::launch_ready(Lock& /*lock*/) {
     if (busy.contains(key)) continue;  // an identical job runs: this one waits for its result
     auto job = store_->job(id);
     if (!job || job->state != "queued") continue;
-    StateStore::Transaction t(*store_);
-    if (!complete_from_cache(*job)) {
-      launch(*job);
-      busy.insert(key);
-    }
-    t.commit();
+    atomically([&] {
+      if (!complete_from_cache(*job)) {
+        launch(*job);
+        busy.insert(key);
+      }
+    });
     changed();
   }
 }
@@ -250,8 +250,15 @@ void Scheduler::launch_ready(Lock& /*lock*/) {
 void Scheduler::launch(JobRecord& job) {
   const fs::path dir = job_dir(config_, job.id);
   fs::create_directories(dir);
+  json payload = job.payload;
+  if (job.optimization_id && !payload.contains("bundle")) {  // stored once, with the optimisation
+    const auto rec = store_->optimization(*job.optimization_id);
+    if (!rec)
+      throw std::runtime_error(fmt::format("job {}: its optimisation is gone", job_id(job.id)));
+    payload["bundle"] = rec->bundle;
+  }
   write_file_atomically(dir / "job.json",
-                        json{{"key", job.key}, {"payload", job.payload}}.dump() + "\n");
+                        json{{"key", job.key}, {"payload", payload}}.dump() + "\n");
   job.state = "running";
   job.started_ms = now_ms();
   ++job.attempts;
@@ -310,30 +317,52 @@ void Scheduler::on_finished(const std::string& id_text, const ExitInfo& exit) {
   } notify{*this};
   const std::int64_t id = parse_id(id_text, 'j');
   running_.erase(id);
-  const bool cancelled = cancelling_.erase(id) > 0;
-  superseded_.erase(id);
   // A stop that kills its workers leaves their jobs `running`: queued again at the next start.
-  // A draining stop records them as they end.
-  if (stopping_ && !draining_ && !cancelled) return;
+  // A draining stop records them as they end. A cancelled job was recorded when it was cancelled.
+  if (stopping_ && !draining_) return;
   try {
     auto job = store_->job(id);
     if (!job || job->state != "running") return;
-    StateStore::Transaction t(*store_);
-    job->finished_ms = now_ms();
-    if (cancelled) {
-      job->state = "cancelled";
-      job->failure = "cancelled by the user";
-      finish_job(*job);
-    } else if (!exit.ok() || !complete_from_cache(*job)) {
-      job->state = "failed";
-      job->failure = exit.ok() ? "the worker ended without storing a usable result; log: " +
-                                     (job_dir(config_, id) / "worker.log").string()
-                               : failure_text(*job, exit);
-      finish_job(*job);
-    }
-    t.commit();
+    atomically([&] {
+      job->finished_ms = now_ms();
+      if (!exit.ok() || !complete_from_cache(*job)) {
+        job->state = "failed";
+        job->failure = exit.ok() ? "the worker ended without storing a usable result; log: " +
+                                       (job_dir(config_, id) / "worker.log").string()
+                                 : failure_text(*job, exit);
+        finish_job(*job);
+      }
+    });
   } catch (const std::exception& e) {
     spdlog::error("job {}: recording its end failed: {}", id_text, e.what());
+    record_failed_end(id, e.what());
+  }
+}
+
+void Scheduler::record_failed_end(std::int64_t id, const std::string& why) {
+  try {
+    auto job = store_->job(id);
+    if (!job || job->state != "running") return;
+    atomically([&] {
+      job->state = "failed";
+      job->failure = "the daemon could not record its end: " + why;
+      job->finished_ms = now_ms();
+      store_->update_job(*job);
+      progress_.erase(id);
+      if (!job->optimization_id) return;
+      auto rec = store_->optimization(*job->optimization_id);
+      if (!rec || rec->state != "running") return;
+      rec->state = "failed";
+      rec->failure = fmt::format(
+          "job {} could not be recorded: {} (`auvloop resume {}` "
+          "continues once the cause is fixed)",
+          job_id(id), why, optimization_id(rec->id));
+      rec->updated_ms = now_ms();
+      store_->update_optimization(*rec);
+      runtimes_.erase(rec->id);
+    });
+  } catch (const std::exception& e) {
+    spdlog::error("job {}: recording it as failed failed too: {}", job_id(id), e.what());
   }
 }
 
@@ -342,17 +371,15 @@ int Scheduler::cancel_job(std::int64_t id) {
   auto job = store_->job(id);
   if (!job) throw RequestError(Kind::not_found, fmt::format("no job {}", job_id(id)));
   if (!job->active()) return 0;
-  if (job->state == "running") {
-    cancelling_.insert(id);
-    backend_->cancel(job_id(id));
-    return 1;
-  }
-  StateStore::Transaction t(*store_);
-  job->state = "cancelled";
-  job->failure = "cancelled by the user";
-  job->finished_ms = now_ms();
-  finish_job(*job);
-  t.commit();
+  // Recorded before the worker is stopped, so a daemon killed meanwhile does not run it again.
+  const bool running = job->state == "running";
+  atomically([&] {
+    job->state = "cancelled";
+    job->failure = "cancelled by the user";
+    job->finished_ms = now_ms();
+    finish_job(*job);
+  });
+  if (running) backend_->cancel(job_id(id));
   changed();
   return 1;
 }
@@ -427,8 +454,9 @@ std::vector<v1::Result> Scheduler::results(int limit) {
 }
 
 v1::Result Scheduler::result(const std::string& key, bool with_manifest) {
-  Lock lock(mutex_);
+  // Verified (checksummed) without the lock: the cache's entries are written atomically.
   const auto hit = cache_.lookup(key);
+  Lock lock(mutex_);
   if (hit.state == results::ResultCache::State::missing) {
     throw RequestError(Kind::not_found, fmt::format("no cached result {}", key));
   }
@@ -489,13 +517,13 @@ v1::DaemonStatus Scheduler::status() {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started_at_).count());
   s.set_slots(config_.slots);
   s.set_running(static_cast<int>(running_.size()));
-  s.set_queued(static_cast<int>(store_->queued_jobs().size()));
+  s.set_queued(static_cast<int>(store_->count_jobs("queued")));
   s.set_state_dir(config_.state_dir.string());
   s.set_socket(config_.socket);
   s.set_tcp_port(config_.tcp_port);
   s.set_jobs_total(store_->count_jobs());
-  s.set_cache_entries(static_cast<std::int64_t>(store_->results(1 << 30).size()));
-  s.set_optimizations_active(static_cast<int>(store_->optimizations(1 << 30, true).size()));
+  s.set_cache_entries(store_->count_results());
+  s.set_optimizations_active(static_cast<int>(store_->count_optimizations("running")));
   return s;
 }
 

@@ -17,4 +17,16 @@ struct Scheduler::Runtime {
   OptimizationRecord record;
 };
 
+template <class F>
+void Scheduler::atomically(F&& f) {
+  StateStore::Transaction t(*store_);
+  try {
+    f();
+    t.commit();
+  } catch (...) {
+    runtimes_.clear();
+    throw;
+  }
+}
+
 }  // namespace auvloop::scheduler

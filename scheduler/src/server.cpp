@@ -70,6 +70,7 @@ void prepare_socket(const fs::path& socket) {
                     socket.string(), sizeof(sockaddr_un::sun_path) - 1));
   }
   fs::create_directories(socket.parent_path());
+  check_socket_directory(socket);
   if (fs::exists(fs::symlink_status(socket))) {
     if (someone_listens(socket)) {
       throw DaemonError(fmt::format("another daemon listens on {}", socket.string()));

@@ -53,6 +53,10 @@ CREATE TABLE IF NOT EXISTS results (
 constexpr const char* kJobColumns =
     "id, name, key, state, payload, plant, duration_s, timeout_s, cache_hit, failure, "
     "optimization_id, batch, point, created_ms, started_ms, finished_ms, attempts";
+// The same without the payload (a listing has no use for it).
+constexpr const char* kJobListColumns =
+    "id, name, key, state, 'null', plant, duration_s, timeout_s, cache_hit, failure, "
+    "optimization_id, batch, point, created_ms, started_ms, finished_ms, attempts";
 
 JobRecord read_job(SQLite::Statement& q) {
   JobRecord j;
@@ -187,7 +191,7 @@ std::optional<JobRecord> StateStore::job(std::int64_t id) const {
 }
 
 std::vector<JobRecord> StateStore::jobs(const JobFilter& f) const {
-  std::string sql = std::string("SELECT ") + kJobColumns + " FROM jobs WHERE 1";
+  std::string sql = std::string("SELECT ") + kJobListColumns + " FROM jobs WHERE 1";
   if (f.optimization_id) sql += " AND optimization_id = ?";
   if (f.active_only) sql += " AND state IN ('queued', 'running')";
   sql += " ORDER BY id DESC LIMIT ?";
@@ -217,8 +221,23 @@ std::optional<JobRecord> StateStore::evaluation_job(std::int64_t optimization, i
   return read_job(q);
 }
 
-std::int64_t StateStore::count_jobs() const {
-  return db_->execAndGet("SELECT COUNT(*) FROM jobs").getInt64();
+std::int64_t StateStore::count_jobs(const std::string& state) const {
+  if (state.empty()) return db_->execAndGet("SELECT COUNT(*) FROM jobs").getInt64();
+  SQLite::Statement q(*db_, "SELECT COUNT(*) FROM jobs WHERE state = ?");
+  q.bind(1, state);
+  q.executeStep();
+  return q.getColumn(0).getInt64();
+}
+
+std::int64_t StateStore::count_optimizations(const std::string& state) const {
+  SQLite::Statement q(*db_, "SELECT COUNT(*) FROM optimizations WHERE state = ?");
+  q.bind(1, state);
+  q.executeStep();
+  return q.getColumn(0).getInt64();
+}
+
+std::int64_t StateStore::count_results() const {
+  return db_->execAndGet("SELECT COUNT(*) FROM results").getInt64();
 }
 
 int StateStore::requeue_running() {

@@ -149,6 +149,32 @@ TEST(Daemon, CancelStopsARunningJob) {
   EXPECT_EQ(d.wait_job(job.id(), 30).state(), v1::CANCELLED);
 }
 
+// The cancel is on disk before the reply: a daemon killed right after it does not run the job
+// again when it restarts.
+TEST(Daemon, CancelSurvivesAKillRightAfterTheReply) {
+  Daemon d({"--no-plots"}, {{"AUVLOOP_WORKER_FAILPOINT", "hang:sleeper"}});
+  d.start();
+  const auto job = d.submit(heading_case("sleeper"));
+  for (int i = 0; i < 500 && d.job(job.id()).state() != v1::RUNNING; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ASSERT_EQ(d.job(job.id()).state(), v1::RUNNING);
+  v1::IdRequest req;
+  req.set_id(job.id());
+  v1::CancelResponse resp;
+  auto c = Daemon::ctx();
+  ASSERT_TRUE(d.stub().Cancel(c.get(), req, &resp).ok());
+  d.kill9();
+  d.start();
+  std::this_thread::sleep_for(std::chrono::milliseconds(600));  // a dispatch round or more
+  EXPECT_EQ(d.job(job.id()).state(), v1::CANCELLED);
+  v1::DaemonStatus status;
+  auto sc = Daemon::ctx();
+  ASSERT_TRUE(d.stub().Status(sc.get(), v1::StatusRequest(), &status).ok());
+  EXPECT_EQ(status.running(), 0);
+  EXPECT_EQ(status.queued(), 0);
+}
+
 TEST(Daemon, DrainingStopRecordsTheRunningJobAndExits) {
   Daemon d({"--no-plots"}, {{"AUVLOOP_WORKER_FAILPOINT", "hang:slow"}});
   d.start();
@@ -252,6 +278,24 @@ TEST(Daemon, HostileRequestsGetErrorsAndNeverCrashIt) {
             grpc::StatusCode::INVALID_ARGUMENT);  // unknown field ignored; the case is empty
   EXPECT_FALSE(raw_call(d.socket(), "/auvloop.v1.Scheduler/NoSuchMethod", "").ok());
   EXPECT_FALSE(raw_call(d.socket(), method, std::string(40 << 20, 'x')).ok());  // > max size
+
+  // An optimisation that could ask for more evaluations than any daemon should run.
+  v1::SubmitOptimizationRequest big;
+  big.mutable_source()->set_source_name("big.toml");
+  big.mutable_source()->set_toml(R"(name = "big"
+[problem]
+type = "test-function"
+function = "branin"
+[optimizer]
+initial_points = 10000
+max_iterations = 10000
+)");
+  v1::Optimization o;
+  auto oc = Daemon::ctx();
+  const auto big_status = d.stub().SubmitOptimization(oc.get(), big, &o);
+  EXPECT_EQ(big_status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_NE(big_status.error_message().find("evaluations"), std::string::npos)
+      << big_status.error_message();
 
   EXPECT_TRUE(d.alive());
   v1::DaemonStatus s;

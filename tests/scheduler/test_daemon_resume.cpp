@@ -92,6 +92,15 @@ TEST(DaemonResume, KilledTwiceTheOptimisationEndsAsIfUninterrupted) {
   const auto runs = d.executions();
   EXPECT_EQ(runs.size(), static_cast<std::size_t>(got.evaluations_done()));
   EXPECT_EQ(std::set<std::string>(runs.begin(), runs.end()).size(), runs.size());
+  // A job queued again after a kill that finds its own stored result is no cache hit: every
+  // point here is distinct, so no job may claim one.
+  v1::ListJobsRequest req;
+  req.set_optimization_id(id);
+  req.set_limit(1000);
+  v1::ListJobsResponse jobs;
+  auto c = Daemon::ctx();
+  ASSERT_TRUE(d.stub().ListJobs(c.get(), req, &jobs).ok());
+  for (const auto& j : jobs.jobs()) EXPECT_FALSE(j.cache_hit()) << j.id() << " " << j.name();
 }
 
 TEST(DaemonResume, CrashingEvaluationsAreFailedEvaluationsAndCancelledRunsResume) {

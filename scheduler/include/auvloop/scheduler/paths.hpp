@@ -13,6 +13,10 @@ std::filesystem::path default_state_dir();
 // $AUVLOOP_SOCKET, else $XDG_RUNTIME_DIR/auvloop/auvloopd.sock, else /tmp/auvloop-UID/auvloopd.sock
 // (a per-user directory with mode 0700).
 std::filesystem::path default_socket();
+// Throws std::runtime_error unless the socket's directory is safe to talk through: owned by this
+// user (or root) and not writable by others (unless sticky, like /tmp). Someone else's
+// /tmp/auvloop-UID could otherwise host a fake daemon that reads every submitted case.
+void check_socket_directory(const std::filesystem::path& socket);
 
 // Inside the state directory:
 inline constexpr const char* kTokenFile = "token";         // TCP bearer token, mode 0600

@@ -16,7 +16,6 @@
 #include <map>
 #include <memory>
 #include <mutex>
-#include <set>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -59,6 +58,9 @@ struct SchedulerConfig {
 // Limits on what one request may carry.
 inline constexpr std::size_t kMaxSourceBytes = 1 << 20;  // per file
 inline constexpr std::size_t kMaxSourceFiles = 16;
+// Evaluations one optimisation may ask for (initial points + iterations x batch size): beyond
+// this the Kriging fits alone (cubic in the number of points) would take days.
+inline constexpr long kMaxEvaluations = 2000;
 
 class Scheduler {
  public:
@@ -113,7 +115,15 @@ class Scheduler {
   // tells the job's optimisation.
   void finish_job(JobRecord& job, const results::StoredRun* run = nullptr);
   std::string failure_text(const JobRecord& job, const ExitInfo& exit) const;
+  // Recording a job's end threw (and was rolled back): records it as failed without telling its
+  // optimisation, which stops with the reason; never throws.
+  void record_failed_end(std::int64_t id, const std::string& why);
   void changed();
+  // Runs `f` in one transaction. Should it throw, the in-memory optimisations are dropped with
+  // the rolled-back changes (they are replayed from the store when next needed), so memory never
+  // runs ahead of the database. Defined in scheduler_runtime.hpp.
+  template <class F>
+  void atomically(F&& f);
 
   // Optimisation driver (optimization_driver.cpp); all with the lock held.
   Runtime& runtime(std::int64_t id);
@@ -132,10 +142,7 @@ class Scheduler {
   std::condition_variable wake_dispatcher_, state_changed_;
   std::unique_ptr<StateStore> store_;
   std::map<std::int64_t, std::string> running_;  // job id -> key
-  std::set<std::int64_t> cancelling_;
-  // Running jobs of a cancelled optimisation: a resume replaces them with fresh jobs.
-  std::set<std::int64_t> superseded_;
-  std::map<std::int64_t, double> progress_;  // job id -> simulated time (s)
+  std::map<std::int64_t, double> progress_;      // job id -> simulated time (s)
   std::map<std::int64_t, std::unique_ptr<Runtime>> runtimes_;
   std::uint64_t version_ = 0;
   bool started_ = false, stopping_ = false, draining_ = false, driving_ = false;

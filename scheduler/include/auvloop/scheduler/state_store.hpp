@@ -32,7 +32,9 @@ struct JobRecord {
   std::string name;
   std::string key;               // content hash
   std::string state = "queued";  // queued | running | succeeded | failed | cancelled
-  nlohmann::json payload;        // {"bundle": SourceBundle, "gains": {...}}: what the worker runs
+  // What the worker runs: {"bundle": SourceBundle} for a case; {"case": name, "gains": {...}} for
+  // an evaluation, whose bundle is its optimisation's.
+  nlohmann::json payload;
   std::string plant;
   double duration_s = 0;  // simulated
   double timeout_s = 0;   // wall
@@ -88,13 +90,17 @@ class StateStore {
     bool active_only = false;
     int limit = 200;  // newest first
   };
+  // Without their payloads (null): job() has them.
   [[nodiscard]] std::vector<JobRecord> jobs(const JobFilter& f) const;
   // (id, key) of the queued jobs, oldest first (light: no payloads).
   [[nodiscard]] std::vector<std::pair<std::int64_t, std::string>> queued_jobs() const;
   // The newest job of evaluation (batch, point) of an optimisation.
   [[nodiscard]] std::optional<JobRecord> evaluation_job(std::int64_t optimization, int batch,
                                                         int point) const;
-  [[nodiscard]] std::int64_t count_jobs() const;
+  // Jobs in `state`, or all of them.
+  [[nodiscard]] std::int64_t count_jobs(const std::string& state = "") const;
+  [[nodiscard]] std::int64_t count_optimizations(const std::string& state) const;
+  [[nodiscard]] std::int64_t count_results() const;
   // Jobs put back to queued (those that were running when the daemon stopped).
   int requeue_running();
 
