@@ -9,6 +9,7 @@
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCore>
 
+#include "amg_pcg.hpp"
 #include "dic_pcg.hpp"
 #include "parallel_cg.hpp"
 
@@ -31,6 +32,8 @@ const char* to_string(SymmetricMethod m) {
       return "cg-dic";
     case SymmetricMethod::cg_jacobi:
       return "cg-jacobi";
+    case SymmetricMethod::cg_amg:
+      return "cg-amg";
   }
   return "?";
 }
@@ -38,10 +41,10 @@ const char* to_string(SymmetricMethod m) {
 SymmetricMethod symmetric_method_from_string(const std::string& s) {
   for (auto m : {SymmetricMethod::cholmod, SymmetricMethod::cholmod_pcg,
                  SymmetricMethod::cg_incomplete_cholesky, SymmetricMethod::cg_dic,
-                 SymmetricMethod::cg_jacobi})
+                 SymmetricMethod::cg_jacobi, SymmetricMethod::cg_amg})
     if (s == to_string(m)) return m;
   throw std::invalid_argument("unknown pressure solver '" + s +
-                              "' (cholmod, cholmod-pcg, cg-ic, cg-dic, cg-jacobi)");
+                              "' (cholmod, cholmod-pcg, cg-ic, cg-dic, cg-jacobi, cg-amg)");
 }
 
 struct LinearSolver::Impl {
@@ -53,6 +56,7 @@ struct LinearSolver::Impl {
   bool analysed = false;
   std::vector<double> factorised_values;  // the coefficients of the current factorisation
   int last_pcg_iterations = 0;
+  std::unique_ptr<AmgPcg> amg;  // built on the first cg-amg solve
 
   Impl(const Mesh& m, double tol) : mesh(m), tolerance(tol) {
     std::vector<Eigen::Triplet<double, int>> t;
@@ -189,6 +193,9 @@ SolveStats LinearSolver::solve_symmetric(const Matrix& m, std::span<double> x,
     stats.iterations = s.iterations;
   } else if (method == SymmetricMethod::cg_dic) {
     stats.iterations = dic_pcg(I.mesh, neg, x, I.tolerance, 20000);
+  } else if (method == SymmetricMethod::cg_amg) {
+    if (!I.amg) I.amg = std::make_unique<AmgPcg>(I.mesh);
+    stats.iterations = I.amg->solve(neg, x, I.tolerance, 2000);
   } else {
     const Vec b = Eigen::Map<const Vec>(neg.source.data(), static_cast<Eigen::Index>(x.size()));
     Eigen::Map<Vec> xv(x.data(), static_cast<Eigen::Index>(x.size()));

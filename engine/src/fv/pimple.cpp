@@ -52,7 +52,7 @@ Pimple::Pimple(const Mesh& mesh, PimpleSettings settings)
   }
   if (!settings_.pressure_solver) {
     const bool two_d = !(active_[0] && active_[1] && active_[2]);
-    settings_.pressure_solver = two_d ? SymmetricMethod::cholmod_pcg : SymmetricMethod::cg_dic;
+    settings_.pressure_solver = two_d ? SymmetricMethod::cholmod_pcg : SymmetricMethod::cg_amg;
   }
 }
 

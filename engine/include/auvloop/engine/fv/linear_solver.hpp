@@ -20,6 +20,7 @@ enum class SymmetricMethod {
   cg_incomplete_cholesky,  // Eigen CG with its IncompleteCholesky (threshold, with fill)
   cg_dic,     // conjugate gradients, diagonal incomplete Cholesky (OpenFOAM's DIC), serial sweeps
   cg_jacobi,  // conjugate gradients, diagonal preconditioner, parallel (oneTBB)
+  cg_amg,     // flexible CG, aggregation algebraic multigrid V-cycle (engine/src/fv/amg_pcg.hpp)
 };
 enum class AsymmetricMethod {
   bicgstab_jacobi,  // Eigen BiCGSTAB with a diagonal preconditioner

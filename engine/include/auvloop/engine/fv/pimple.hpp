@@ -29,7 +29,7 @@ struct PimpleSettings {
   double relax_u = 1.0;  // momentum under-relaxation (all but the final outer iteration)
   double relax_p = 1.0;  // pressure under-relaxation (all but the final outer iteration)
   Convection convection = Convection::van_leer;
-  // Fastest measured (docs/cfd.md, "Pressure solver"): cholmod-pcg on 2D grids, cg-dic in 3D,
+  // Fastest measured (docs/cfd.md, "Pressure solver"): cholmod-pcg on 2D grids, cg-amg in 3D,
   // where the Cholesky factor fills in too much; empty means choose by the grid.
   std::optional<SymmetricMethod> pressure_solver;
   double tolerance = 1e-8;     // relative tolerance of the iterative linear solvers
