@@ -10,7 +10,10 @@
 
 #include "auvloop/engine/fv/linear_solver.hpp"
 #include "auvloop/engine/fv/operators.hpp"
+#include "auvloop/geometry/myring.hpp"
+#include "auvloop/geometry/vehicle.hpp"
 #include "auvloop/mesher/generators.hpp"
+#include "auvloop/mesher/hull_grid.hpp"
 
 using namespace auvloop;
 namespace fv = engine::fv;
@@ -98,14 +101,31 @@ TEST(AmgPcg, IterationsGrowFarLessThanWithDicWhenTheGridIsRefined) {
   const int dic_coarse = iterations(12, fv::SymmetricMethod::cg_dic);
   const int dic_fine = iterations(24, fv::SymmetricMethod::cg_dic);
   // Halving h doubles DIC-CG's iterations (the square root of the condition number, which grows
-  // as h^-2); the multigrid cycle removes the smooth error, so its count grows more slowly
-  // (a V-cycle of unsmoothed aggregation is not h-independent: measured 15 -> 25 here, and
-  // 10, 12, 14 on uniform 8^3, 16^3, 32^3 boxes) and stays a third of DIC's or less.
+  // as h^-2); the multigrid cycle removes the smooth error, so its count hardly grows (measured
+  // 16 -> 19 here; a plain V-cycle of the same aggregates went 15 -> 25) and stays a third of
+  // DIC's or less.
   std::printf("iterations 12^3 -> 24^3: cg-amg %d -> %d, cg-dic %d -> %d\n", amg_coarse, amg_fine,
               dic_coarse, dic_fine);
   EXPECT_GT(dic_fine, 1.8 * dic_coarse) << dic_coarse << " -> " << dic_fine;
   const double amg_growth = static_cast<double>(amg_fine) / amg_coarse;
   const double dic_growth = static_cast<double>(dic_fine) / dic_coarse;
-  EXPECT_LT(amg_growth, 0.85 * dic_growth) << amg_coarse << " -> " << amg_fine;
+  EXPECT_LT(amg_growth, 0.7 * dic_growth) << amg_coarse << " -> " << amg_fine;
   EXPECT_LT(amg_fine, dic_fine / 3) << amg_fine << " vs DIC " << dic_fine;
+}
+
+// On the wall-clustered hull grid (cells of aspect ratio in the hundreds next to the wall) the
+// aggregation follows the strong wall-normal couplings: measured 22 iterations against DIC's 176.
+TEST(AmgPcg, OnTheWallClusteredHullGridItNeedsAQuarterOfDicsIterations) {
+  const auto vehicle = geometry::preset_vehicle("remus100");
+  const auto grid = mesher::hull_grid(geometry::MyringProfile(vehicle.hull),
+                                      vehicle.mass.cb_station, mesher::HullGridSpec{});
+  const fv::Mesh mesh(grid);
+  const auto m = poisson(grid, mesh, false);
+  const auto count = [&](fv::SymmetricMethod method) {
+    fv::LinearSolver solver(mesh, 1e-8);
+    std::vector<double> x(static_cast<std::size_t>(mesh.cells()), 0.0);
+    return solver.solve_symmetric(m, x, method).iterations;
+  };
+  const int amg = count(fv::SymmetricMethod::cg_amg), dic = count(fv::SymmetricMethod::cg_dic);
+  EXPECT_LT(4 * amg, dic) << amg << " vs DIC " << dic;
 }

@@ -15,8 +15,11 @@ namespace auvloop::engine::fv {
 namespace {
 // Below this many cells a level is solved directly (dense Cholesky: n^3 / 3 flops per setup).
 constexpr int kCoarsestCells = 64;
-// Coarsening that keeps more than this fraction of the cells no longer pays for a level.
-constexpr double kMinReduction = 0.8;
+// Coarsening (two pairings) that keeps more than this fraction of the cells no longer pays for a
+// level; with about a quarter of the cells per level the K-cycle costs about twice a V-cycle.
+constexpr double kMinReduction = 0.6;
+// The K-cycle skips its second Krylov step when the first reduced the residual this much.
+constexpr double kKcycleTolerance = 0.25;
 constexpr int kMaxLevels = 40;
 // A cell pairs only with a free neighbour coupled at least this strongly relative to its
 // strongest coupling (Notay's beta): on stretched cells, pairs across the weak direction make
@@ -39,7 +42,8 @@ struct Level {
   std::vector<double> diag, upper;                 // coefficients
   std::vector<int> agg;                            // cell -> coarser cell
   std::vector<int> coarse_face;                    // face -> coarser face; -1 inside a pair
-  std::vector<double> x, b, r, e, Ae;              // work
+  std::vector<double> x, b, r;                     // work
+  std::vector<double> r0, c1, v1, v2;              // work of the K-cycle on this level
 
   void build_adjacency() {
     row_start.assign(static_cast<std::size_t>(n) + 1, 0);
@@ -58,7 +62,9 @@ struct Level {
         adj_face[k] = static_cast<int>(f);
       }
     }
-    for (auto* v : {&x, &b, &r, &e, &Ae}) v->assign(static_cast<std::size_t>(n), 0.0);
+    for (auto* v : {&x, &b, &r, &r0, &c1, &v1, &v2}) {
+      v->assign(static_cast<std::size_t>(n), 0.0);
+    }
   }
 
   // y = A v
@@ -145,6 +151,13 @@ struct Level {
     return c;
   }
 
+  // Follows this level's maps with those of `mid` (to the level below it): two pairings in a row
+  // make aggregates of about four cells.
+  void compose(const Level& mid) {
+    for (int& a : agg) a = mid.agg[static_cast<std::size_t>(a)];
+    for (int& f : coarse_face) f = f < 0 ? -1 : mid.coarse_face[static_cast<std::size_t>(f)];
+  }
+
   // Galerkin coarse coefficients P^T A P for piecewise-constant P.
   void restrict_matrix(Level& c) const {
     c.diag.assign(static_cast<std::size_t>(c.n), 0.0);
@@ -181,8 +194,9 @@ struct AmgPcg::Hierarchy {
     }
   }
 
-  // Solves approximately levels[l].A x = levels[l].b, from x = 0.
-  void vcycle(std::size_t l) {
+  // Solves approximately levels[l].A x = levels[l].b, from x = 0: Gauss-Seidel, the coarse
+  // correction (exact on the coarsest level, a K-cycle elsewhere), Gauss-Seidel backwards.
+  void cycle(std::size_t l) {
     Level& L = levels[l];
     if (l + 1 == levels.size()) {
       Eigen::Map<const Eigen::VectorXd> b(L.b.data(), L.n);
@@ -196,15 +210,43 @@ struct AmgPcg::Hierarchy {
     for (std::size_t i = 0; i < L.r.size(); ++i) L.r[i] = L.b[i] - L.r[i];
     std::fill(C.b.begin(), C.b.end(), 0.0);
     for (std::size_t i = 0; i < L.r.size(); ++i) C.b[static_cast<std::size_t>(L.agg[i])] += L.r[i];
-    vcycle(l + 1);
-    for (std::size_t i = 0; i < L.e.size(); ++i) L.e[i] = C.x[static_cast<std::size_t>(L.agg[i])];
-    // The step along the correction that minimises the error in the energy norm: unsmoothed
-    // aggregation's piecewise-constant correction has the right shape but too small an amplitude.
-    L.multiply(L.e, L.Ae);
-    const double eAe = dot(L.e, L.Ae);
-    const double scale = eAe > 0 ? dot(L.e, L.r) / eAe : 1.0;
-    for (std::size_t i = 0; i < L.x.size(); ++i) L.x[i] += scale * L.e[i];
+    if (l + 2 == levels.size()) {
+      cycle(l + 1);
+    } else {
+      kcycle(l + 1);
+    }
+    for (std::size_t i = 0; i < L.x.size(); ++i) L.x[i] += C.x[static_cast<std::size_t>(L.agg[i])];
     L.sweep_backward();
+  }
+
+  // Two flexible-CG steps on level l preconditioned by cycle(l), the second only when the first
+  // left more than a quarter of the residual (Notay and Vassilevski's K-cycle). It minimises the
+  // error in the energy norm over the two directions, which makes a cycle of unsmoothed
+  // aggregation about as good as a two-grid method at any depth.
+  void kcycle(std::size_t l) {
+    Level& L = levels[l];
+    L.r0 = L.b;
+    cycle(l);
+    L.c1 = L.x;
+    L.multiply(L.c1, L.v1);
+    const double rho1 = dot(L.c1, L.v1), alpha1 = dot(L.c1, L.r0);
+    if (!(rho1 > 0)) return;  // keep the plain cycle
+    const double r0_norm = std::sqrt(dot(L.r0, L.r0));
+    for (std::size_t i = 0; i < L.b.size(); ++i) L.b[i] = L.r0[i] - alpha1 / rho1 * L.v1[i];
+    if (std::sqrt(dot(L.b, L.b)) <= kKcycleTolerance * r0_norm) {
+      for (std::size_t i = 0; i < L.x.size(); ++i) L.x[i] = alpha1 / rho1 * L.c1[i];
+      return;
+    }
+    cycle(l);  // c2 = L.x, from the new residual in L.b
+    L.multiply(L.x, L.v2);
+    const double gamma = dot(L.x, L.v1), beta = dot(L.x, L.v2), alpha2 = dot(L.x, L.b);
+    const double rho2 = beta - gamma * gamma / rho1;
+    if (!(rho2 > 0)) {
+      for (std::size_t i = 0; i < L.x.size(); ++i) L.x[i] = alpha1 / rho1 * L.c1[i];
+      return;
+    }
+    const double a1 = alpha1 / rho1 - gamma * alpha2 / (rho1 * rho2), a2 = alpha2 / rho2;
+    for (std::size_t i = 0; i < L.x.size(); ++i) L.x[i] = a1 * L.c1[i] + a2 * L.x[i];
   }
 };
 
@@ -241,10 +283,14 @@ int AmgPcg::solve(const Matrix& A, std::span<double> x, double tolerance, int ma
     while (h_->levels.back().n > kCoarsestCells &&
            static_cast<int>(h_->levels.size()) < kMaxLevels) {
       Level& fine = h_->levels.back();
-      const int nc = fine.pair_cells();
+      const int n_mid = fine.pair_cells();
+      Level mid = fine.coarsen(n_mid);
+      fine.restrict_matrix(mid);
+      const int nc = mid.pair_cells();
       if (nc > kMinReduction * fine.n) break;
-      Level coarse = fine.coarsen(nc);
-      fine.restrict_matrix(coarse);
+      Level coarse = mid.coarsen(nc);
+      mid.restrict_matrix(coarse);
+      fine.compose(mid);
       h_->levels.push_back(std::move(coarse));
     }
     h_->levels.back().agg.clear();
@@ -268,7 +314,7 @@ int AmgPcg::solve(const Matrix& A, std::span<double> x, double tolerance, int ma
   if (rnorm <= tolerance * bnorm) return 0;
   const auto precondition = [&] {
     F.b = r;
-    h_->vcycle(0);
+    h_->cycle(0);
     z = F.x;
   };
   precondition();

@@ -4,19 +4,20 @@
 // preconditioners (DIC) need O(N^(1/3)) more iterations as a 3D grid is refined; a multigrid
 // cycle removes the smooth error that those iterations spend their time on.
 //
-// The method (after the pairwise aggregation of Notay, "An aggregation-based algebraic multigrid
-// method", ETNA 37, 2010, and OpenFOAM's GAMG with its face-pair agglomeration):
-//   - each level pairs every cell with its most strongly coupled free neighbour (largest
-//     |a_ij|, if at least a quarter of its largest coupling), giving about half the cells per
-//     level; the coarse matrix is the Galerkin product
-//     P^T A P with piecewise-constant P (sums of the fine coefficients, so it is symmetric
-//     positive definite when A is, and keeps the LDU face structure);
-//   - a V-cycle with one forward Gauss-Seidel sweep before and one backward sweep after the
-//     coarse correction (so the cycle is a symmetric operator), a dense Cholesky solve on the
-//     coarsest level; each prolongated correction is scaled by the energy-minimising factor
-//     (r.e / e.A e), which makes unsmoothed aggregation converge well but makes the
-//     preconditioner vary between iterations, so the outer iteration is flexible CG
-//     (Polak-Ribiere beta; Notay, SIAM J. Sci. Comput. 22, 2000).
+// The method (after Notay's AGMG: "An aggregation-based algebraic multigrid method", ETNA 37,
+// 2010, and Notay and Vassilevski's K-cycle, Numer. Linear Algebra Appl. 15, 2008):
+//   - two passes of pairwise aggregation per level, each pairing a cell with its most strongly
+//     coupled free neighbour (largest |a_ij|, if at least a quarter of its largest coupling),
+//     give aggregates of about four cells; the coarse matrix is the Galerkin product P^T A P
+//     with piecewise-constant P (sums of the fine coefficients, so it is symmetric positive
+//     definite when A is, and keeps the LDU face structure);
+//   - a cycle with one forward Gauss-Seidel sweep before and one backward sweep after the coarse
+//     correction, a dense Cholesky solve on the coarsest level, and on every other level the
+//     K-cycle: the coarse problem is solved by two steps of flexible CG preconditioned by the
+//     next cycle. Unsmoothed aggregation in a plain V-cycle loses accuracy with every level; the
+//     K-cycle keeps the iteration count nearly independent of the grid size, at about twice a
+//     V-cycle's cost with four-to-one coarsening. It is a nonlinear preconditioner, so the
+//     outer iteration is flexible CG (Polak-Ribiere beta; Notay, SIAM J. Sci. Comput. 22, 2000).
 // The aggregates depend only on the matrix given to the first solve and are kept (the pattern is
 // the grid's and does not change); the coarse coefficients are recomputed on every solve. All
 // loops run in a fixed order, so results do not depend on the thread count.
