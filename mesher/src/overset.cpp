@@ -40,6 +40,10 @@ int GridAssembly::count(CellStatus s) const {
   return static_cast<int>(std::count(status.begin(), status.end(), s));
 }
 
+int GridAssembly::fallbacks() const {
+  return static_cast<int>(std::count(fallback.begin(), fallback.end(), 1));
+}
+
 namespace {
 using SK = CGAL::Simple_cartesian<double>;
 using KPoint = SK::Point_3;
@@ -161,7 +165,7 @@ double violation(const GridData& d, int cell, const Eigen::Vector3d& x) {
 // from `seed` (a previous donor) or the nearest cell centre (k-d tree). A walk can end on the
 // boundary although x is inside the grid (the fluid round a convex body is not convex), or
 // circle among warped cells; then the 16 nearest cells are tried. -1: x is in no cell.
-int locate(const GridData& d, const Eigen::Vector3d& x, int seed) {
+int locate_cell(const GridData& d, const Eigen::Vector3d& x, int seed) {
   if (!d.local_box.contains(x)) return -1;
   const KPoint q(x.x(), x.y(), x.z());
   int c = seed;
@@ -197,6 +201,22 @@ int locate(const GridData& d, const Eigen::Vector3d& x, int seed) {
   return best <= 1e-3 ? best_cell : -1;
 }
 
+// The cell whose centre is nearest to x (grid frame).
+int nearest(const GridData& d, const Eigen::Vector3d& x) {
+  KSearch search(*d.tree, KPoint(x.x(), x.y(), x.z()), 1);
+  return boost::get<1>(search.begin()->first);
+}
+
+// Keeps the (at most) 16 cells of a fallback stencil whose centres are nearest to x: the weights
+// stay local, and their round-off (n^2 eps) small.
+void nearest_first(const GridData& d, const Eigen::Vector3d& x, std::vector<int>& cells) {
+  const auto dist = [&](int c) {
+    return (d.geo.cell_centre[static_cast<std::size_t>(c)] - x).squaredNorm();
+  };
+  std::sort(cells.begin(), cells.end(), [&](int a, int b) { return dist(a) < dist(b); });
+  if (cells.size() > 16) cells.resize(16);
+}
+
 // Interpolation weights reproducing linear fields: minimise sum w_i^2 / D_i subject to
 // sum w_i = 1 and sum w_i (x_i - x) = 0, D_i = 1 / |x_i - x|^2 (near cells weigh more).
 bool linear_weights(const std::vector<Eigen::Vector3d>& xs, const Eigen::Vector3d& x,
@@ -214,11 +234,24 @@ bool linear_weights(const std::vector<Eigen::Vector3d>& xs, const Eigen::Vector3
     A.col(i) << 1.0, r;
     D(i) = 1.0 / (r.squaredNorm() + 1e-3);
   }
-  const Eigen::Matrix4d M = A * D.asDiagonal() * A.transpose();
-  const Eigen::FullPivLU<Eigen::Matrix4d> lu(M);
-  if (lu.rank() < 4) return false;
-  const Eigen::Vector4d y = lu.solve(Eigen::Vector4d(1, 0, 0, 0));
-  const Eigen::VectorXd wv = D.asDiagonal() * (A.transpose() * y);
+  // Minimum-norm solution by a QR factorisation of B^T = (A D^1/2)^T = Q R: w = D^1/2 Q R^-T e1.
+  // Unlike the normal equations (A D A^T) y = e1 this does not square the condition number, which
+  // matters for fallback stencils that extrapolate. One refinement step on the constraint
+  // residual brings sum w = 1 and sum w r = 0 to round-off.
+  const Eigen::VectorXd sqrt_d = D.cwiseSqrt();
+  const Eigen::MatrixXd Bt = (A * sqrt_d.asDiagonal()).transpose();
+  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(Bt);
+  const Eigen::Matrix4d R = qr.matrixQR().topLeftCorner(4, 4).triangularView<Eigen::Upper>();
+  for (int i = 0; i < 4; ++i)
+    if (std::abs(R(i, i)) <= 1e-10 * std::abs(R(0, 0))) return false;  // centres in a plane
+  const Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(n, 4);
+  const auto solve = [&](const Eigen::Vector4d& rhs) -> Eigen::VectorXd {
+    const Eigen::Vector4d z = R.transpose().triangularView<Eigen::Lower>().solve(rhs);
+    return sqrt_d.cwiseProduct(Q * z);
+  };
+  const Eigen::Vector4d e1(1, 0, 0, 0);
+  Eigen::VectorXd wv = solve(e1);
+  wv += solve(e1 - A * wv);
   w.assign(wv.data(), wv.data() + n);
   return true;
 }
@@ -345,7 +378,7 @@ struct OversetAssembler::Impl {
         if (!boxes[k].contains(x)) continue;
         const auto hu = static_cast<std::size_t>(others[k]);
         const auto& hd = grids[hu];
-        const int loc = locate(hd, hd.grid->placement.inverse() * x, -1);
+        const int loc = locate_cell(hd, hd.grid->placement.inverse() * x, -1);
         if (loc < 0) continue;
         const auto lu = static_cast<std::size_t>(loc);
         if (wall_hole[hu][lu] || depth[hu][lu] < settings.overlap_cells * d.size[cu]) continue;
@@ -444,43 +477,88 @@ struct OversetAssembler::Impl {
     }
   }
 
-  // Donor stencil of one fringe cell; false when no grid offers an active donor.
-  bool find_donor(int g, int c, int seed_grid, int seed_cell, Assembly& a,
+  // Stencil in grid h round the located cell `loc` for the point xl (h's frame). An active `loc`
+  // that contains xl (`containing`): loc and its active face neighbours, grown ring by ring (at
+  // most three) while the centres do not span 3D (at the edge of an active region they may all lie
+  // in one plane). A `loc` that is not active (a fallback donor: the point lies in a hole or fringe
+  // cell of h, e.g. a fin-grid cell straddling the hull wall at the fin root): the active cells
+  // within `fallback_rings` face steps of it, through any cells. The weights reproduce linear
+  // fields either way; the fallback extrapolates over at most those few cells.
+  bool stencil_in(int h, const Eigen::Vector3d& xl, int loc, bool containing,
+                  const std::vector<CellStatus>& hs, std::vector<int>& stencil,
+                  std::vector<double>& w) const {
+    const auto& hd = grids[static_cast<std::size_t>(h)];
+    std::vector<int> reached{loc};
+    stencil.clear();
+    if (containing) stencil.push_back(loc);
+    const int rings = containing ? 3 : settings.fallback_rings;
+    for (int ring = 0; ring < rings; ++ring) {
+      const auto frontier = containing ? stencil : reached;
+      for (int cell : frontier)
+        hd.each_neighbour(cell, [&](int n) {
+          if (std::find(reached.begin(), reached.end(), n) != reached.end()) return;
+          if (!containing || hs[static_cast<std::size_t>(n)] == CellStatus::active)
+            reached.push_back(n);
+          if (hs[static_cast<std::size_t>(n)] == CellStatus::active &&
+              std::find(stencil.begin(), stencil.end(), n) == stencil.end())
+            stencil.push_back(n);
+        });
+      if (!containing && ring + 1 < rings && stencil.size() < 8) continue;
+      if (!containing) nearest_first(hd, xl, stencil);
+      std::vector<Eigen::Vector3d> xs;
+      for (int s : stencil) xs.push_back(hd.geo.cell_centre[static_cast<std::size_t>(s)]);
+      if (linear_weights(xs, xl, w)) return true;
+    }
+    if (containing) return false;
+    // Last resort, when the rings stay inside a thick hole: the nearest active cell centres.
+    KSearch search(*hd.tree, KPoint(xl.x(), xl.y(), xl.z()), 64);
+    stencil.clear();
+    std::vector<Eigen::Vector3d> xs;
+    for (const auto& hit : search) {
+      const int cell = boost::get<1>(hit.first);
+      if (hs[static_cast<std::size_t>(cell)] != CellStatus::active) continue;
+      stencil.push_back(cell);
+      xs.push_back(hd.geo.cell_centre[static_cast<std::size_t>(cell)]);
+      if (stencil.size() == 12) break;
+    }
+    return linear_weights(xs, xl, w);
+  }
+
+  // Donor stencil of one fringe cell; false when no grid offers an active donor. First a cell of
+  // another grid that contains the centre and is active, in priority order; failing that, the
+  // nearest active cells round the containing cell, in the same order (a lower-quality donor).
+  bool find_donor(int g, int c, int seed_grid, int seed_cell, const Assembly& a,
                   std::vector<int>& cells_out, std::vector<double>& w_out, int& donor_grid,
-                  int& donor_cell) const {
+                  int& donor_cell, bool& fallback) const {
     const Eigen::Vector3d x = body(g, c);
+    // (grid, cell) containing x, any status; or, when x lies in no cell of a grid but within its
+    // box widened by the receiver's fringe depth (between a wall and its triangulation, just
+    // past a corner of its outer boundary), the cell whose centre is nearest.
+    const double reach = settings.fringe_layers *
+                         grids[static_cast<std::size_t>(g)].size[static_cast<std::size_t>(c)];
+    std::vector<std::pair<int, int>> located;
     for (int h : order) {
       if (h == g) continue;
       const auto& hd = grids[static_cast<std::size_t>(h)];
-      const auto& hs = a.grids[static_cast<std::size_t>(h)].status;
       const Eigen::Vector3d xl = hd.grid->placement.inverse() * x;
-      const int loc = locate(hd, xl, h == seed_grid ? seed_cell : -1);
-      if (loc < 0 || hs[static_cast<std::size_t>(loc)] != CellStatus::active) continue;
-      // The donor and its active face neighbours, grown ring by ring (at most three) while the
-      // centres do not span 3D (at the edge of an active region they may all lie in one plane).
-      std::vector<int> stencil{loc};
-      const auto add_ring = [&] {
-        const auto ring = stencil;
-        for (int cell : ring)
-          hd.each_neighbour(cell, [&](int n) {
-            if (hs[static_cast<std::size_t>(n)] == CellStatus::active &&
-                std::find(stencil.begin(), stencil.end(), n) == stencil.end())
-              stencil.push_back(n);
-          });
-      };
-      bool ok = false;
-      for (int ring = 0; ring < 3 && !ok; ++ring) {
-        add_ring();
-        std::vector<Eigen::Vector3d> xs;
-        for (int s : stencil) xs.push_back(hd.geo.cell_centre[static_cast<std::size_t>(s)]);
-        ok = linear_weights(xs, xl, w_out);
-      }
-      if (!ok) continue;
-      cells_out = std::move(stencil);
-      donor_grid = h;
-      donor_cell = loc;
-      return true;
+      int loc = locate_cell(hd, xl, h == seed_grid ? seed_cell : -1);
+      if (loc < 0 && hd.local_box.contains(xl, reach)) loc = -2 - nearest(hd, xl);
+      if (loc != -1) located.emplace_back(h, loc);
     }
+    for (int pass = 0; pass < 2; ++pass)
+      for (const auto& [h, found] : located) {
+        const auto& hs = a.grids[static_cast<std::size_t>(h)].status;
+        const int loc = found >= 0 ? found : -2 - found;
+        const bool active = found >= 0 && hs[static_cast<std::size_t>(loc)] == CellStatus::active;
+        if (active != (pass == 0)) continue;
+        const auto& hd = grids[static_cast<std::size_t>(h)];
+        if (!stencil_in(h, hd.grid->placement.inverse() * x, loc, active, hs, cells_out, w_out))
+          continue;
+        donor_grid = h;
+        donor_cell = active ? loc : cells_out.front();
+        fallback = !active;
+        return true;
+      }
     return false;
   }
 
@@ -496,6 +574,7 @@ struct OversetAssembler::Impl {
       const auto n = static_cast<std::size_t>(grids[g].grid->cells);
       ga.donor_grid.assign(n, -1);
       ga.donor_cell.assign(n, -1);
+      ga.fallback.assign(n, 0);
       ga.stencil_offsets.assign(1, 0);
       ga.stencil_cells.clear();
       ga.stencil_weights.clear();
@@ -509,10 +588,12 @@ struct OversetAssembler::Impl {
             seed_cell = previous->grids[g].donor_cell[c];
           }
           int dg = -1, dc = -1;
+          bool fb = false;
           if (find_donor(static_cast<int>(g), static_cast<int>(c), seed_grid, seed_cell, a, cells,
-                         w, dg, dc)) {
+                         w, dg, dc, fb)) {
             ga.donor_grid[c] = dg;
             ga.donor_cell[c] = dc;
+            ga.fallback[c] = fb ? 1 : 0;
             ga.stencil_cells.insert(ga.stencil_cells.end(), cells.begin(), cells.end());
             ga.stencil_weights.insert(ga.stencil_weights.end(), w.begin(), w.end());
           } else {
@@ -522,6 +603,7 @@ struct OversetAssembler::Impl {
           const auto& pg = previous->grids[g];
           ga.donor_grid[c] = pg.donor_grid[c];
           ga.donor_cell[c] = pg.donor_cell[c];
+          ga.fallback[c] = pg.fallback[c];
           const auto b = static_cast<std::size_t>(pg.stencil_offsets[c]);
           const auto e = static_cast<std::size_t>(pg.stencil_offsets[c + 1]);
           ga.stencil_cells.insert(ga.stencil_cells.end(),
@@ -605,6 +687,11 @@ OversetAssembler::~OversetAssembler() = default;
 
 Eigen::Vector3d OversetAssembler::centre(int grid, int cell) const {
   return impl_->body(grid, cell);
+}
+
+int OversetAssembler::locate(int grid, const Eigen::Vector3d& x) const {
+  const auto& d = impl_->grids.at(static_cast<std::size_t>(grid));
+  return locate_cell(d, d.grid->placement.inverse() * x, -1);
 }
 
 Assembly OversetAssembler::assemble(const std::vector<double>& deflections) {

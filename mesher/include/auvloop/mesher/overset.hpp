@@ -34,12 +34,16 @@ const char* to_string(CellStatus s);
 struct GridAssembly {
   std::vector<CellStatus> status;
   // Per fringe cell (CSR over cells; empty for the others): donor grid, donor cells, weights.
-  std::vector<int> donor_grid;       // per cell, -1 if none
-  std::vector<int> donor_cell;       // per cell: the cell containing the centre, -1 if none
+  std::vector<int> donor_grid;  // per cell, -1 if none
+  std::vector<int> donor_cell;  // per cell: the cell containing the centre, -1 if none
+  // Per cell: 1 when the donors are a fallback (the containing cell was not active; donor_cell is
+  // then the stencil's first active cell).
+  std::vector<char> fallback;
   std::vector<int> stencil_offsets;  // cells + 1
   std::vector<int> stencil_cells;
   std::vector<double> stencil_weights;
   [[nodiscard]] int count(CellStatus s) const;
+  [[nodiscard]] int fallbacks() const;
 };
 
 struct Assembly {
@@ -56,6 +60,10 @@ struct OversetSettings {
   // finds active donors among this grid's cells (the 0.87 of a size to the farthest corner).
   double overlap_cells = 3.5;
   double surface_edge = 0.004;  // m, triangulation of hull and fins for the inside tests
+  // When the cell of another grid containing a fringe centre is not active (a fin-grid cell
+  // straddling the hull wall at the fin root, a hull cell beside a fin), the donors are the active
+  // cells within this many face steps of it.
+  int fallback_rings = 5;
 };
 
 class OversetAssembler {
@@ -74,6 +82,8 @@ class OversetAssembler {
 
   // Body-frame centre of a cell (placement applied).
   [[nodiscard]] Eigen::Vector3d centre(int grid, int cell) const;
+  // The cell of a grid (GridSystem::grids() order) containing a body-frame point, -1 if none.
+  [[nodiscard]] int locate(int grid, const Eigen::Vector3d& x) const;
 
  private:
   struct Impl;
