@@ -60,6 +60,29 @@ void UpdateHalfDegree(benchmark::State& state) {
   state.counters["cells"] = static_cast<double>(sys.total_cells());
 }
 BENCHMARK(UpdateHalfDegree)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
+
+// Full assembly and update timed in the same iterations, so that their ratio is measured under the
+// same machine load (the machine is shared): counters full_ms, update_ms and update_over_full.
+void UpdateOverFull(benchmark::State& state) {
+  auto sys = mesher::build_grid_system(remus(), mesher::mesh_preset(preset(state), remus()));
+  mesher::OversetAssembler assembler(sys, remus());
+  const double deg = std::numbers::pi / 180;
+  const auto fins = sys.fins.size();
+  double full = 0, update = 0;
+  for (auto _ : state) {
+    const auto start = assembler.assemble(std::vector<double>(fins, 10 * deg));
+    const auto moved = assembler.update(start, std::vector<double>(fins, 10.5 * deg));
+    full += start.seconds;
+    update += moved.seconds;
+    benchmark::DoNotOptimize(moved);
+  }
+  const auto n = static_cast<double>(state.iterations());
+  state.SetLabel(preset(state));
+  state.counters["full_ms"] = 1e3 * full / n;
+  state.counters["update_ms"] = 1e3 * update / n;
+  state.counters["update_over_full"] = update / full;
+}
+BENCHMARK(UpdateOverFull)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
 }  // namespace
 
 BENCHMARK_MAIN();

@@ -234,24 +234,19 @@ bool linear_weights(const std::vector<Eigen::Vector3d>& xs, const Eigen::Vector3
     A.col(i) << 1.0, r;
     D(i) = 1.0 / (r.squaredNorm() + 1e-3);
   }
-  // Minimum-norm solution by a QR factorisation of B^T = (A D^1/2)^T = Q R: w = D^1/2 Q R^-T e1.
-  // Unlike the normal equations (A D A^T) y = e1 this does not square the condition number, which
-  // matters for fallback stencils that extrapolate. One refinement step on the constraint
-  // residual brings sum w = 1 and sum w r = 0 to round-off.
-  const Eigen::VectorXd sqrt_d = D.cwiseSqrt();
-  const Eigen::MatrixXd Bt = (A * sqrt_d.asDiagonal()).transpose();
-  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(Bt);
-  const Eigen::Matrix4d R = qr.matrixQR().topLeftCorner(4, 4).triangularView<Eigen::Upper>();
-  for (int i = 0; i < 4; ++i)
-    if (std::abs(R(i, i)) <= 1e-10 * std::abs(R(0, 0))) return false;  // centres in a plane
-  const Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(n, 4);
-  const auto solve = [&](const Eigen::Vector4d& rhs) -> Eigen::VectorXd {
-    const Eigen::Vector4d z = R.transpose().triangularView<Eigen::Lower>().solve(rhs);
-    return sqrt_d.cwiseProduct(Q * z);
-  };
+  // Minimum-norm solution through the 4 x 4 normal equations (A D A^T) y = e1, w = D A^T y, with
+  // two steps of iterative refinement on the constraint residual e1 - A w: the normal equations
+  // square the condition number, which matters for fallback stencils that extrapolate, and the
+  // refinement brings sum w = 1 and sum w r = 0 back to round-off at the cost of two 4 x 4 solves.
+  const Eigen::Matrix4d M = A * D.asDiagonal() * A.transpose();
+  const Eigen::FullPivLU<Eigen::Matrix4d> lu(M);
+  if (lu.rank() < 4) return false;  // centres in a plane
   const Eigen::Vector4d e1(1, 0, 0, 0);
-  Eigen::VectorXd wv = solve(e1);
-  wv += solve(e1 - A * wv);
+  Eigen::VectorXd wv = D.asDiagonal() * (A.transpose() * lu.solve(e1));
+  for (int step = 0; step < 2; ++step) {
+    const Eigen::Vector4d residual = e1 - A * wv;
+    wv += D.asDiagonal() * (A.transpose() * lu.solve(residual));
+  }
   w.assign(wv.data(), wv.data() + n);
   return true;
 }
@@ -271,6 +266,9 @@ struct OversetAssembler::Impl {
   std::vector<std::vector<char>> wall_hole;    // per grid: centre inside another solid
   std::unique_ptr<geometry::MyringProfile> profile;
   double cb_station = 0;
+  // Scratch for stencil searches: per grid, the stamp of the search that last reached a cell.
+  mutable std::vector<std::vector<int>> marks;
+  mutable std::vector<int> stamps;
 
   // Steps 1-3 for the given cells of every grid (all others keep their statuses and depths).
   void run(Assembly& a, const std::vector<std::vector<int>>& cells) {
@@ -488,25 +486,32 @@ struct OversetAssembler::Impl {
                   const std::vector<CellStatus>& hs, std::vector<int>& stencil,
                   std::vector<double>& w) const {
     const auto& hd = grids[static_cast<std::size_t>(h)];
+    // Cells reached are stamped (mark[cell] == stamp) instead of searched for in a list.
+    auto& mark = marks[static_cast<std::size_t>(h)];
+    const int stamp = ++stamps[static_cast<std::size_t>(h)];
     std::vector<int> reached{loc};
+    mark[static_cast<std::size_t>(loc)] = stamp;
     stencil.clear();
     if (containing) stencil.push_back(loc);
     const int rings = containing ? 3 : settings.fallback_rings;
+    std::size_t begin = 0;
     for (int ring = 0; ring < rings; ++ring) {
-      const auto frontier = containing ? stencil : reached;
-      for (int cell : frontier)
-        hd.each_neighbour(cell, [&](int n) {
-          if (std::find(reached.begin(), reached.end(), n) != reached.end()) return;
-          if (!containing || hs[static_cast<std::size_t>(n)] == CellStatus::active)
-            reached.push_back(n);
-          if (hs[static_cast<std::size_t>(n)] == CellStatus::active &&
-              std::find(stencil.begin(), stencil.end(), n) == stencil.end())
-            stencil.push_back(n);
+      const std::size_t end = reached.size();
+      for (std::size_t i = begin; i < end; ++i)
+        hd.each_neighbour(reached[i], [&](int n) {
+          const auto nu = static_cast<std::size_t>(n);
+          if (mark[nu] == stamp) return;
+          const bool act = hs[nu] == CellStatus::active;
+          if (containing && !act) return;  // a containing donor's rings grow through active cells
+          mark[nu] = stamp;
+          reached.push_back(n);
+          if (act) stencil.push_back(n);
         });
+      begin = end;
       if (!containing && ring + 1 < rings && stencil.size() < 8) continue;
       if (!containing) nearest_first(hd, xl, stencil);
       std::vector<Eigen::Vector3d> xs;
-      for (int s : stencil) xs.push_back(hd.geo.cell_centre[static_cast<std::size_t>(s)]);
+      for (int c : stencil) xs.push_back(hd.geo.cell_centre[static_cast<std::size_t>(c)]);
       if (linear_weights(xs, xl, w)) return true;
     }
     if (containing) return false;
@@ -536,29 +541,33 @@ struct OversetAssembler::Impl {
     // past a corner of its outer boundary), the cell whose centre is nearest.
     const double reach = settings.fringe_layers *
                          grids[static_cast<std::size_t>(g)].size[static_cast<std::size_t>(c)];
-    std::vector<std::pair<int, int>> located;
+    std::vector<std::pair<int, int>> located;  // the cells that are not active donors
     for (int h : order) {
       if (h == g) continue;
       const auto& hd = grids[static_cast<std::size_t>(h)];
+      const auto& hs = a.grids[static_cast<std::size_t>(h)].status;
       const Eigen::Vector3d xl = hd.grid->placement.inverse() * x;
       int loc = locate_cell(hd, xl, h == seed_grid ? seed_cell : -1);
-      if (loc < 0 && hd.local_box.contains(xl, reach)) loc = -2 - nearest(hd, xl);
-      if (loc != -1) located.emplace_back(h, loc);
-    }
-    for (int pass = 0; pass < 2; ++pass)
-      for (const auto& [h, found] : located) {
-        const auto& hs = a.grids[static_cast<std::size_t>(h)].status;
-        const int loc = found >= 0 ? found : -2 - found;
-        const bool active = found >= 0 && hs[static_cast<std::size_t>(loc)] == CellStatus::active;
-        if (active != (pass == 0)) continue;
-        const auto& hd = grids[static_cast<std::size_t>(h)];
-        if (!stencil_in(h, hd.grid->placement.inverse() * x, loc, active, hs, cells_out, w_out))
-          continue;
+      if (loc >= 0 && hs[static_cast<std::size_t>(loc)] == CellStatus::active &&
+          stencil_in(h, xl, loc, true, hs, cells_out, w_out)) {
         donor_grid = h;
-        donor_cell = active ? loc : cells_out.front();
-        fallback = !active;
+        donor_cell = loc;
+        fallback = false;
         return true;
       }
+      if (loc < 0 && hd.local_box.contains(xl, reach)) loc = nearest(hd, xl);
+      if (loc >= 0) located.emplace_back(h, loc);
+    }
+    for (const auto& [h, loc] : located) {
+      const auto& hd = grids[static_cast<std::size_t>(h)];
+      const auto& hs = a.grids[static_cast<std::size_t>(h)].status;
+      if (!stencil_in(h, hd.grid->placement.inverse() * x, loc, false, hs, cells_out, w_out))
+        continue;
+      donor_grid = h;
+      donor_cell = cells_out.front();
+      fallback = true;
+      return true;
+    }
     return false;
   }
 
@@ -589,8 +598,14 @@ struct OversetAssembler::Impl {
           }
           int dg = -1, dc = -1;
           bool fb = false;
-          if (find_donor(static_cast<int>(g), static_cast<int>(c), seed_grid, seed_cell, a, cells,
-                         w, dg, dc, fb)) {
+          if (previous != nullptr &&
+              refit(a, previous->grids[g], static_cast<int>(g), static_cast<int>(c), cells, w)) {
+            ga.donor_grid[c] = previous->grids[g].donor_grid[c];
+            ga.donor_cell[c] = previous->grids[g].donor_cell[c];
+            ga.stencil_cells.insert(ga.stencil_cells.end(), cells.begin(), cells.end());
+            ga.stencil_weights.insert(ga.stencil_weights.end(), w.begin(), w.end());
+          } else if (find_donor(static_cast<int>(g), static_cast<int>(c), seed_grid, seed_cell, a,
+                                cells, w, dg, dc, fb)) {
             ga.donor_grid[c] = dg;
             ga.donor_cell[c] = dc;
             ga.fallback[c] = fb ? 1 : 0;
@@ -618,11 +633,45 @@ struct OversetAssembler::Impl {
     }
   }
 
+  // After a small move, the previous stencil of a receiver is refitted (new weights, same cells)
+  // when its donor cell still contains the centre, its cells are all still active, and no grid of
+  // higher priority now offers an active cell containing the centre: the donor a full search would
+  // choose is then the same cell. A fallback stencil is refitted while no grid offers an active
+  // containing cell and its first cell stays within the fallback reach.
+  bool refit(const Assembly& a, const GridAssembly& pg, int g, int c, std::vector<int>& cells,
+             std::vector<double>& w) const {
+    const auto cu = static_cast<std::size_t>(c);
+    if (pg.status[cu] != CellStatus::fringe || pg.donor_grid[cu] < 0) return false;
+    const bool fallback = pg.fallback[cu] != 0;
+    const int dg = pg.donor_grid[cu];
+    const auto& hd = grids[static_cast<std::size_t>(dg)];
+    const auto& hs = a.grids[static_cast<std::size_t>(dg)].status;
+    const Eigen::Vector3d x = body(g, c);
+    const Eigen::Vector3d xl = hd.grid->placement.inverse() * x;
+    const int donor = pg.donor_cell[cu];
+    const double size = hd.size[static_cast<std::size_t>(donor)];
+    if (fallback ? (hd.geo.cell_centre[static_cast<std::size_t>(donor)] - xl).norm() >
+                       settings.fallback_rings * size
+                 : violation(hd, donor, xl) > 1e-12 * size)
+      return false;
+    cells.assign(pg.stencil_cells.begin() + pg.stencil_offsets[cu],
+                 pg.stencil_cells.begin() + pg.stencil_offsets[cu + 1]);
+    for (int s : cells)
+      if (hs[static_cast<std::size_t>(s)] != CellStatus::active) return false;
+    if (outranked(a, g, c, dg, fallback)) return false;
+    std::vector<Eigen::Vector3d> xs;
+    for (int s : cells) xs.push_back(hd.geo.cell_centre[static_cast<std::size_t>(s)]);
+    return linear_weights(xs, xl, w);
+  }
+
+  // A stencil between two grids that did not move is kept as it is (weights included) when its
+  // cells are all still active and, for a receiver within reach of the moved fins (`redo`), no
+  // grid that outranks its donor grid now offers an active cell containing it.
   [[nodiscard]] bool keep(const Assembly& a, const Assembly& previous,
                           const std::vector<std::vector<char>>& redo, std::size_t g,
                           std::size_t c) const {
     const auto& pg = previous.grids[g];
-    if (redo[g][c] || pg.status[c] != CellStatus::fringe) return false;
+    if (pg.status[c] != CellStatus::fringe) return false;
     if (grids[g].fin >= 0) return false;  // the receiver moved
     const int dg = pg.donor_grid[c];
     if (dg < 0 || grids[static_cast<std::size_t>(dg)].fin >= 0) return false;  // donor moved
@@ -631,7 +680,24 @@ struct OversetAssembler::Impl {
       if (ds[static_cast<std::size_t>(pg.stencil_cells[static_cast<std::size_t>(k)])] !=
           CellStatus::active)
         return false;
-    return true;
+    return !redo[g][c] ||
+           !outranked(a, static_cast<int>(g), static_cast<int>(c), dg, pg.fallback[c] != 0);
+  }
+
+  // Whether a grid before `dg` in priority order (any grid, for a fallback donor) now has an
+  // active cell containing the centre of receiver c of grid g.
+  [[nodiscard]] bool outranked(const Assembly& a, int g, int c, int dg, bool fallback) const {
+    const Eigen::Vector3d x = body(g, c);
+    for (int h : order) {
+      if (h == dg && !fallback) break;
+      if (h == g) continue;
+      const auto& od = grids[static_cast<std::size_t>(h)];
+      const int loc = locate_cell(od, od.grid->placement.inverse() * x, -1);
+      if (loc >= 0 && a.grids[static_cast<std::size_t>(h)].status[static_cast<std::size_t>(loc)] ==
+                          CellStatus::active)
+        return true;
+    }
+    return false;
   }
 };
 
@@ -679,6 +745,8 @@ OversetAssembler::OversetAssembler(GridSystem& system, const geometry::Vehicle& 
     m.wall_dist.push_back(std::move(w));
     m.wall_hole.emplace_back(n, 0);
     m.depth.emplace_back(n, kInf);
+    m.marks.emplace_back(n, 0);
+    m.stamps.push_back(0);
   }
 }
 

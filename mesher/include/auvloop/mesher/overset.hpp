@@ -11,11 +11,15 @@
 //      least `overlap_cells` of its own sizes deep inside that grid's active region;
 //   3. fringe: `fringe_layers` layers of cells next to holes and, for component grids, next to the
 //      outer (overset) boundary;
-//   4. donors: the cell of another grid (priority order) that contains the fringe cell's centre,
-//      found by a walk through the cells from the nearest cell centre (a k-d tree), or from the
-//      previous donor in an incremental update; it must be active, as must the face neighbours
-//      that complete the stencil. Weights: the minimum (inverse-distance weighted) norm solution of
-//      sum w = 1, sum w x = x_fringe, so linear fields are interpolated exactly.
+//   4. donors: the cell of another grid (priority order) that contains the fringe cell's centre
+//      and is active, found by a walk through the cells from the nearest cell centre (a k-d tree),
+//      or from the previous donor in an incremental update; the stencil is it and its active
+//      neighbours. Failing that in every grid (at the fin-hull junction the containing fin-grid
+//      cell straddles the hull wall and is a hole), a fallback donor: the active cells nearest to
+//      the containing cell (or, just outside a grid, to its nearest cell), again in priority
+//      order. Weights: the minimum (inverse-distance weighted) norm solution of sum w = 1,
+//      sum w x = x_fringe, so linear fields are interpolated exactly, inside or outside the
+//      stencil's hull.
 // Invariants of a result: no donor cell is anything but active; weights sum to one.
 #pragma once
 
@@ -76,8 +80,10 @@ class OversetAssembler {
   // Full assembly with the fins at `deflections` (rad, one per fin); moves the fin grids'
   // placements of the system given to the constructor.
   Assembly assemble(const std::vector<double>& deflections);
-  // After a small fin rotation: only cells near the fins are re-examined, and donors are found by
-  // walking from the previous ones. Gives the same statuses as a full assembly (tested).
+  // After a small fin rotation: only cells near the fins are re-examined; stencils between grids
+  // that did not move are kept, the others refitted (new weights on the previous cells) while
+  // their donor still contains the centre and nothing outranks it, or else searched from the
+  // previous donor. Gives the same statuses as a full assembly (tested).
   Assembly update(const Assembly& previous, const std::vector<double>& deflections);
 
   // Body-frame centre of a cell (placement applied).
