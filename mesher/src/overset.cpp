@@ -269,6 +269,14 @@ struct OversetAssembler::Impl {
   // Scratch for stencil searches: per grid, the stamp of the search that last reached a cell.
   mutable std::vector<std::vector<int>> marks;
   mutable std::vector<int> stamps;
+  // Per grid, the cell found by its last successful locate: receivers are visited in cell order,
+  // so consecutive ones are mostly neighbours and a walk from there takes a step or two instead
+  // of a k-d tree search (the walk still ends only in the cell containing the point).
+  mutable std::vector<int> found;
+  [[nodiscard]] int last_found(int h) const { return found[static_cast<std::size_t>(h)]; }
+  void remember(int h, int loc) const {
+    if (loc >= 0) found[static_cast<std::size_t>(h)] = loc;
+  }
 
   // Steps 1-3 for the given cells of every grid (all others keep their statuses and depths).
   void run(Assembly& a, const std::vector<std::vector<int>>& cells) {
@@ -376,7 +384,8 @@ struct OversetAssembler::Impl {
         if (!boxes[k].contains(x)) continue;
         const auto hu = static_cast<std::size_t>(others[k]);
         const auto& hd = grids[hu];
-        const int loc = locate_cell(hd, hd.grid->placement.inverse() * x, -1);
+        const int loc = locate_cell(hd, hd.grid->placement.inverse() * x, last_found(others[k]));
+        remember(others[k], loc);
         if (loc < 0) continue;
         const auto lu = static_cast<std::size_t>(loc);
         if (wall_hole[hu][lu] || depth[hu][lu] < settings.overlap_cells * d.size[cu]) continue;
@@ -547,7 +556,8 @@ struct OversetAssembler::Impl {
       const auto& hd = grids[static_cast<std::size_t>(h)];
       const auto& hs = a.grids[static_cast<std::size_t>(h)].status;
       const Eigen::Vector3d xl = hd.grid->placement.inverse() * x;
-      int loc = locate_cell(hd, xl, h == seed_grid ? seed_cell : -1);
+      int loc = locate_cell(hd, xl, h == seed_grid ? seed_cell : last_found(h));
+      remember(h, loc);
       if (loc >= 0 && hs[static_cast<std::size_t>(loc)] == CellStatus::active &&
           stencil_in(h, xl, loc, true, hs, cells_out, w_out)) {
         donor_grid = h;
@@ -692,7 +702,8 @@ struct OversetAssembler::Impl {
       if (h == dg && !fallback) break;
       if (h == g) continue;
       const auto& od = grids[static_cast<std::size_t>(h)];
-      const int loc = locate_cell(od, od.grid->placement.inverse() * x, -1);
+      const int loc = locate_cell(od, od.grid->placement.inverse() * x, last_found(h));
+      remember(h, loc);
       if (loc >= 0 && a.grids[static_cast<std::size_t>(h)].status[static_cast<std::size_t>(loc)] ==
                           CellStatus::active)
         return true;
@@ -747,6 +758,7 @@ OversetAssembler::OversetAssembler(GridSystem& system, const geometry::Vehicle& 
     m.depth.emplace_back(n, kInf);
     m.marks.emplace_back(n, 0);
     m.stamps.push_back(0);
+    m.found.push_back(-1);
   }
 }
 
