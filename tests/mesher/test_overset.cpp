@@ -24,19 +24,27 @@ const geometry::Vehicle& remus() {
 
 struct Check {
   int fallbacks = 0;
-  int orphans = 0, fringe = 0, bad_donor_status = 0;
+  int orphans = 0, fringe = 0, bad_donor_status = 0, largest_stencil = 0;
   double worst_sum = 0, worst_linear = 0;  // in units of the round-off bound of each sum
+  // Largest distance from a fringe centre to its nearest stencil centre, in that cell's size
+  // (cube root of its volume): how far a fallback stencil extrapolates.
+  double farthest_fallback = 0;
 };
 
 // Every fringe stencil: active donor cells, weights summing to one, and the linear field
 // f = 3 + 2 x - 5 y + 7 z (body frame) reproduced at the fringe centre.
-Check check(const OversetAssembler& asmb, const Assembly& a) {
+std::vector<GridGeometry> geometries(const GridSystem& sys) {
+  std::vector<GridGeometry> out;
+  for (const Grid* g : sys.grids()) out.push_back(compute_geometry(*g));
+  return out;
+}
+
+Check check(const OversetAssembler& asmb, const Assembly& a, const std::vector<GridGeometry>& geo) {
   Check r;
   const auto f = [](const Eigen::Vector3d& x) { return 3 + 2 * x.x() - 5 * x.y() + 7 * x.z(); };
   for (std::size_t g = 0; g < a.grids.size(); ++g) {
     const auto& ga = a.grids[g];
     r.orphans += ga.count(CellStatus::orphan);
-    r.fallbacks += ga.fallbacks();
     for (std::size_t c = 0; c < ga.status.size(); ++c) {
       if (ga.status[c] != CellStatus::fringe) continue;
       ++r.fringe;
@@ -55,6 +63,22 @@ Check check(const OversetAssembler& asmb, const Assembly& a) {
         value_abs += std::abs(w * fd);
       }
       const double exact = f(asmb.centre(static_cast<int>(g), static_cast<int>(c)));
+      r.largest_stencil =
+          std::max(r.largest_stencil, ga.stencil_offsets[c + 1] - ga.stencil_offsets[c]);
+      if (ga.fallback[c]) {
+        ++r.fallbacks;
+        double nearest = std::numeric_limits<double>::infinity();
+        for (int k = ga.stencil_offsets[c]; k < ga.stencil_offsets[c + 1]; ++k) {
+          const int d = ga.stencil_cells[static_cast<std::size_t>(k)];
+          const double size =
+              std::cbrt(geo[static_cast<std::size_t>(dg)].cell_volume[static_cast<std::size_t>(d)]);
+          nearest = std::min(
+              nearest,
+              (asmb.centre(dg, d) - asmb.centre(static_cast<int>(g), static_cast<int>(c))).norm() /
+                  size);
+        }
+        r.farthest_fallback = std::max(r.farthest_fallback, nearest);
+      }
       // Round-off: the weights solve a 4 x 4 system built from n <= 32 stencil cells and are
       // summed again, so Wilkinson's n^2 eps (about 1e3 eps) times the sum of the magnitudes.
       const double eps = std::numeric_limits<double>::epsilon();
@@ -72,19 +96,23 @@ void sweep(const char* preset) {
   const MeshSettings settings = mesh_preset(preset, remus());
   GridSystem sys = build_grid_system(remus(), settings);
   OversetAssembler asmb(sys, remus());
+  const auto geo = geometries(sys);
   for (int deg = -35; deg <= 35; deg += 5) {
     const double d = deg * std::numbers::pi / 180;
     const Assembly a = asmb.assemble(std::vector<double>(sys.fins.size(), d));
-    const Check r = check(asmb, a);
+    const Check r = check(asmb, a, geo);
     std::printf(
-        "%s %+3d deg: %d fringe (%d with fallback donors), %d orphans, |sum w - 1| and linear "
-        "error at most %.2f and %.2f of their round-off bounds (%.2f s)\n",
-        preset, deg, r.fringe, r.fallbacks, r.orphans, r.worst_sum, r.worst_linear, a.seconds);
+        "%s %+3d deg: %d fringe (%d with fallback donors, nearest donor centre at most %.2f "
+        "cell sizes away), %d orphans, |sum w - 1| and linear error at most %.2f and %.2f of "
+        "their round-off bounds, stencils of at most %d cells (%.2f s)\n",
+        preset, deg, r.fringe, r.fallbacks, r.farthest_fallback, r.orphans, r.worst_sum,
+        r.worst_linear, r.largest_stencil, a.seconds);
     EXPECT_GT(r.fringe, 0) << deg;
     EXPECT_EQ(r.orphans, 0) << deg;
     EXPECT_EQ(r.bad_donor_status, 0) << deg;
     EXPECT_LE(r.worst_sum, 1.0) << deg;
     EXPECT_LE(r.worst_linear, 1.0) << deg;
+    EXPECT_LE(r.largest_stencil, 32) << deg;  // the premise of the round-off bound
   }
 }
 
@@ -197,6 +225,7 @@ TEST(Overset, IncrementalUpdatesMatchFullAssemblies) {
   const double step = 0.5 * std::numbers::pi / 180;
   const auto fins = sys.fins.size();
   Assembly inc = asmb.assemble(std::vector<double>(fins, 10 * step));
+  const auto geo = geometries(sys);
   for (int k = 11; k <= 14; ++k) {
     const Assembly full = asmb.assemble(std::vector<double>(fins, k * step));
     const Assembly restart = asmb.assemble(std::vector<double>(fins, (k - 1) * step));
@@ -209,7 +238,7 @@ TEST(Overset, IncrementalUpdatesMatchFullAssemblies) {
         k * 0.5, full.cells_visited, full.seconds, inc.cells_visited, inc.seconds, differ);
     EXPECT_EQ(differ, 0) << k;
     EXPECT_LT(inc.cells_visited, full.cells_visited / 2) << k;
-    const Check r = check(asmb, inc);
+    const Check r = check(asmb, inc, geo);
     EXPECT_EQ(r.orphans, 0) << k;
     EXPECT_EQ(r.bad_donor_status, 0) << k;
     EXPECT_LE(r.worst_sum, 1.0) << k;
