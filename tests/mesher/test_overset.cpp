@@ -116,6 +116,53 @@ void sweep(const char* preset) {
   }
 }
 
+// Cells whose statuses differ between two assemblies (the first few are printed).
+int differing_statuses(const OversetAssembler& asmb, const Assembly& full, const Assembly& inc) {
+  int differ = 0;
+  for (std::size_t g = 0; g < full.grids.size(); ++g)
+    for (std::size_t c = 0; c < full.grids[g].status.size(); ++c)
+      if (full.grids[g].status[c] != inc.grids[g].status[c]) {
+        if (differ < 8) {
+          const auto x = asmb.centre(static_cast<int>(g), static_cast<int>(c));
+          std::printf("  differ: grid %zu cell %zu full %s inc %s at (%.4f %.4f %.4f)\n", g, c,
+                      to_string(full.grids[g].status[c]), to_string(inc.grids[g].status[c]), x.x(),
+                      x.y(), x.z());
+        }
+        ++differ;
+      }
+  return differ;
+}
+
+// Successive 0.5 deg rotations of every fin by incremental updates (kept and refitted stencils
+// carried along) against full assemblies at each angle: the same statuses, and valid, exact
+// stencils.
+void chained_updates(const char* preset, int steps) {
+  const MeshSettings settings = mesh_preset(preset, remus());
+  GridSystem sys = build_grid_system(remus(), settings);
+  OversetAssembler asmb(sys, remus());
+  const double step = 0.5 * std::numbers::pi / 180;
+  const auto fins = sys.fins.size();
+  Assembly inc = asmb.assemble(std::vector<double>(fins, 10 * step));
+  const auto geo = geometries(sys);
+  for (int k = 11; k <= 10 + steps; ++k) {
+    const Assembly full = asmb.assemble(std::vector<double>(fins, k * step));
+    const Assembly restart = asmb.assemble(std::vector<double>(fins, (k - 1) * step));
+    (void)restart;  // the assembler's fins are back at the previous angle
+    inc = asmb.update(inc, std::vector<double>(fins, k * step));
+    const int differ = differing_statuses(asmb, full, inc);
+    std::printf(
+        "%s %.1f deg: full assembly %d cells examined in %.3f s; update %d cells in %.3f s; %d "
+        "statuses differ\n",
+        preset, k * 0.5, full.cells_visited, full.seconds, inc.cells_visited, inc.seconds, differ);
+    EXPECT_EQ(differ, 0) << k;
+    EXPECT_LT(inc.cells_visited, full.cells_visited / 2) << k;
+    const Check r = check(asmb, inc, geo);
+    EXPECT_EQ(r.orphans, 0) << k;
+    EXPECT_EQ(r.bad_donor_status, 0) << k;
+    EXPECT_LE(r.worst_sum, 1.0) << k;
+    EXPECT_LE(r.worst_linear, 1.0) << k;
+  }
+}
 #ifdef AUVLOOP_OVERSET_PRESETS
 // Built as test_overset_presets, label slow: the medium and fine presets (0.3 M and 1.3 M cells).
 TEST(OversetSlow, MediumFinSweepHasNoOrphans) {
@@ -123,6 +170,10 @@ TEST(OversetSlow, MediumFinSweepHasNoOrphans) {
 }
 TEST(OversetSlow, FineFinSweepHasNoOrphans) {
   sweep("fine");
+}
+TEST(OversetSlow, MediumAndFineUpdatesMatchFullAssemblies) {
+  chained_updates("medium", 2);
+  chained_updates("fine", 1);
 }
 #else
 TEST(Overset, CoarseFinSweepHasNoOrphansAndExactLinearInterpolation) {
@@ -198,51 +249,7 @@ TEST(Overset, ActiveAndFringeCellsCoverTheFluid) {
   }
 }
 
-// Cells whose statuses differ between two assemblies (the first few are printed).
-int differing_statuses(const OversetAssembler& asmb, const Assembly& full, const Assembly& inc) {
-  int differ = 0;
-  for (std::size_t g = 0; g < full.grids.size(); ++g)
-    for (std::size_t c = 0; c < full.grids[g].status.size(); ++c)
-      if (full.grids[g].status[c] != inc.grids[g].status[c]) {
-        if (differ < 8) {
-          const auto x = asmb.centre(static_cast<int>(g), static_cast<int>(c));
-          std::printf("  differ: grid %zu cell %zu full %s inc %s at (%.4f %.4f %.4f)\n", g, c,
-                      to_string(full.grids[g].status[c]), to_string(inc.grids[g].status[c]), x.x(),
-                      x.y(), x.z());
-        }
-        ++differ;
-      }
-  return differ;
-}
-
-// Four successive 0.5 deg rotations of every fin by incremental updates (kept and refitted
-// stencils carried along) against full assemblies at each angle: the same statuses, and valid,
-// exact stencils.
 TEST(Overset, IncrementalUpdatesMatchFullAssemblies) {
-  const MeshSettings settings = mesh_preset("coarse", remus());
-  GridSystem sys = build_grid_system(remus(), settings);
-  OversetAssembler asmb(sys, remus());
-  const double step = 0.5 * std::numbers::pi / 180;
-  const auto fins = sys.fins.size();
-  Assembly inc = asmb.assemble(std::vector<double>(fins, 10 * step));
-  const auto geo = geometries(sys);
-  for (int k = 11; k <= 14; ++k) {
-    const Assembly full = asmb.assemble(std::vector<double>(fins, k * step));
-    const Assembly restart = asmb.assemble(std::vector<double>(fins, (k - 1) * step));
-    (void)restart;  // the assembler's fins are back at the previous angle
-    inc = asmb.update(inc, std::vector<double>(fins, k * step));
-    const int differ = differing_statuses(asmb, full, inc);
-    std::printf(
-        "%.1f deg: full assembly %d cells examined in %.3f s; update %d cells in %.3f s; %d "
-        "statuses differ\n",
-        k * 0.5, full.cells_visited, full.seconds, inc.cells_visited, inc.seconds, differ);
-    EXPECT_EQ(differ, 0) << k;
-    EXPECT_LT(inc.cells_visited, full.cells_visited / 2) << k;
-    const Check r = check(asmb, inc, geo);
-    EXPECT_EQ(r.orphans, 0) << k;
-    EXPECT_EQ(r.bad_donor_status, 0) << k;
-    EXPECT_LE(r.worst_sum, 1.0) << k;
-    EXPECT_LE(r.worst_linear, 1.0) << k;
-  }
+  chained_updates("coarse", 4);
 }
 #endif
