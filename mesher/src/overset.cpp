@@ -568,17 +568,28 @@ struct OversetAssembler::Impl {
       if (loc < 0 && hd.local_box.contains(xl, reach)) loc = nearest(hd, xl);
       if (loc >= 0) located.emplace_back(h, loc);
     }
+    // Among the grids' fallback stencils, the one that extrapolates least: the smallest distance
+    // from x to its nearest centre, in that cell's size (a donor-quality rule; the priority order
+    // decides ties).
+    double best = kInf;
+    std::vector<int> cells;
+    std::vector<double> w;
     for (const auto& [h, loc] : located) {
       const auto& hd = grids[static_cast<std::size_t>(h)];
       const auto& hs = a.grids[static_cast<std::size_t>(h)].status;
-      if (!stencil_in(h, hd.grid->placement.inverse() * x, loc, false, hs, cells_out, w_out))
-        continue;
+      const Eigen::Vector3d xl = hd.grid->placement.inverse() * x;
+      if (!stencil_in(h, xl, loc, false, hs, cells, w)) continue;
+      const auto first = static_cast<std::size_t>(cells.front());  // nearest first
+      const double extrapolation = (hd.geo.cell_centre[first] - xl).norm() / hd.size[first];
+      if (extrapolation >= best) continue;
+      best = extrapolation;
+      cells_out = cells;
+      w_out = w;
       donor_grid = h;
-      donor_cell = cells_out.front();
-      fallback = true;
-      return true;
+      donor_cell = cells.front();
     }
-    return false;
+    fallback = best < kInf;
+    return fallback;
   }
 
   // Donors for every fringe cell. With a previous assembly, a stencil is kept when its receiver
