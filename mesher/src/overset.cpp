@@ -540,7 +540,8 @@ struct OversetAssembler::Impl {
 
   // Donor stencil of one fringe cell; false when no grid offers an active donor. First a cell of
   // another grid that contains the centre and is active, in priority order; failing that, the
-  // nearest active cells round the containing cell, in the same order (a lower-quality donor).
+  // nearest active cells round the containing cell in the grid where they extrapolate least (a
+  // lower-quality donor).
   bool find_donor(int g, int c, int seed_grid, int seed_cell, const Assembly& a,
                   std::vector<int>& cells_out, std::vector<double>& w_out, int& donor_grid,
                   int& donor_cell, bool& fallback) const {

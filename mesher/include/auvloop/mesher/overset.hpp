@@ -16,10 +16,10 @@
 //      or from the previous donor in an incremental update; the stencil is it and its active
 //      neighbours. Failing that in every grid (at the fin-hull junction the containing fin-grid
 //      cell straddles the hull wall and is a hole), a fallback donor: the active cells nearest to
-//      the containing cell (or, just outside a grid, to its nearest cell), again in priority
-//      order. Weights: the minimum (inverse-distance weighted) norm solution of sum w = 1,
-//      sum w x = x_fringe, so linear fields are interpolated exactly, inside or outside the
-//      stencil's hull.
+//      the containing cell (or, just outside a grid, to its nearest cell) in the grid where they
+//      lie nearest to the centre, in their cell sizes. Weights: the minimum (inverse-distance
+//      weighted) norm solution of sum w = 1, sum w x = x_fringe, so linear fields are interpolated
+//      exactly, inside or outside the stencil's hull.
 // Invariants of a result: no donor cell is anything but active; weights sum to one.
 #pragma once
 
