@@ -163,23 +163,6 @@ void chained_updates(const char* preset, int steps) {
     EXPECT_LE(r.worst_linear, 1.0) << k;
   }
 }
-#ifdef AUVLOOP_OVERSET_PRESETS
-// Built as test_overset_presets, label slow: the medium and fine presets (0.3 M and 1.3 M cells).
-TEST(OversetSlow, MediumFinSweepHasNoOrphans) {
-  sweep("medium");
-}
-TEST(OversetSlow, FineFinSweepHasNoOrphans) {
-  sweep("fine");
-}
-TEST(OversetSlow, MediumAndFineUpdatesMatchFullAssemblies) {
-  chained_updates("medium", 2);
-  chained_updates("fine", 1);
-}
-#else
-TEST(Overset, CoarseFinSweepHasNoOrphansAndExactLinearInterpolation) {
-  sweep("coarse");
-}
-
 // Coverage of the fluid, by Monte-Carlo sampling of the near-body region (where the grids overlap;
 // the background alone covers the rest). The fluid is given by the analytic solids (the Myring
 // profile and the NACA fins, not the grids). Every fluid sample must lie in an active or fringe
@@ -203,8 +186,8 @@ bool in_solid(const GridSystem& sys, const Eigen::Vector3d& p, double deflection
   return false;
 }
 
-TEST(Overset, ActiveAndFringeCellsCoverTheFluid) {
-  const MeshSettings settings = mesh_preset("coarse", remus());
+void coverage(const char* preset) {
+  const MeshSettings settings = mesh_preset(preset, remus());
   GridSystem sys = build_grid_system(remus(), settings);
   OversetAssembler asmb(sys, remus());
   const geometry::MyringProfile profile(remus().hull);
@@ -212,7 +195,7 @@ TEST(Overset, ActiveAndFringeCellsCoverTheFluid) {
   const double side = remus().fin_set.tip_radius + 0.1;
   const Eigen::Vector3d lo(cb - length - 0.1, -side, -side), hi(cb + 0.1, side, side);
   const double box = (hi - lo).prod();
-  for (int deg : {0, 30}) {
+  for (int deg = -35; deg <= 35; deg += 5) {
     const double d = deg * std::numbers::pi / 180;
     const Assembly a = asmb.assemble(std::vector<double>(sys.fins.size(), d));
     std::mt19937_64 rng(12345);
@@ -239,9 +222,9 @@ TEST(Overset, ActiveAndFringeCellsCoverTheFluid) {
       c.uncovered_not_staircase += covered || staircase ? 0 : 1;
     }
     std::printf(
-        "%+d deg: %d of %d samples in the fluid, %d in active or fringe cells (%d in active "
+        "%s %+d deg: %d of %d samples in the fluid, %d in active or fringe cells (%d in active "
         "cells), %d in neither (%d not in a wall staircase): uncovered volume %.2e m^3 of %.4f\n",
-        deg, c.fluid, samples, c.covered, c.active, c.uncovered, c.uncovered_not_staircase,
+        preset, deg, c.fluid, samples, c.covered, c.active, c.uncovered, c.uncovered_not_staircase,
         box * c.uncovered / samples, box * c.fluid / samples);
     EXPECT_EQ(c.uncovered_not_staircase, 0) << deg;
     // All but a few samples: the staircases are wall-cell thin.
@@ -249,6 +232,30 @@ TEST(Overset, ActiveAndFringeCellsCoverTheFluid) {
   }
 }
 
+#ifdef AUVLOOP_OVERSET_PRESETS
+// Built as test_overset_presets, label slow: the medium and fine presets (0.3 M and 1.3 M cells).
+TEST(OversetSlow, MediumFinSweepHasNoOrphans) {
+  sweep("medium");
+}
+TEST(OversetSlow, FineFinSweepHasNoOrphans) {
+  sweep("fine");
+}
+TEST(OversetSlow, MediumAndFineCellsCoverTheFluid) {
+  coverage("medium");
+  coverage("fine");
+}
+TEST(OversetSlow, MediumAndFineUpdatesMatchFullAssemblies) {
+  chained_updates("medium", 2);
+  chained_updates("fine", 1);
+}
+#else
+TEST(Overset, CoarseFinSweepHasNoOrphansAndExactLinearInterpolation) {
+  sweep("coarse");
+}
+
+TEST(Overset, ActiveAndFringeCellsCoverTheFluid) {
+  coverage("coarse");
+}
 TEST(Overset, IncrementalUpdatesMatchFullAssemblies) {
   chained_updates("coarse", 4);
 }
