@@ -2,6 +2,7 @@
 // Mesher timings: building each preset's grid system, a full overset assembly, and the
 // incremental update after a 0.5 deg rotation of every fin (the per-time-step cost when the
 // rudders move). Run: build/release/bench/bench_mesher
+#include <ctime>
 #include <numbers>
 
 #include <benchmark/benchmark.h>
@@ -60,6 +61,39 @@ void UpdateHalfDegree(benchmark::State& state) {
   state.counters["cells"] = static_cast<double>(sys.total_cells());
 }
 BENCHMARK(UpdateHalfDegree)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
+
+// Full assembly and update timed in the same iterations, in CPU time of this thread, so that
+// their ratio is measured under the same conditions on the shared machine: counters full_ms,
+// update_ms and update_over_full.
+double thread_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+void UpdateOverFull(benchmark::State& state) {
+  auto sys = mesher::build_grid_system(remus(), mesher::mesh_preset(preset(state), remus()));
+  mesher::OversetAssembler assembler(sys, remus());
+  const double deg = std::numbers::pi / 180;
+  const auto fins = sys.fins.size();
+  double full = 0, update = 0;
+  for (auto _ : state) {
+    const double t0 = thread_cpu_seconds();
+    const auto start = assembler.assemble(std::vector<double>(fins, 10 * deg));
+    const double t1 = thread_cpu_seconds();
+    const auto moved = assembler.update(start, std::vector<double>(fins, 10.5 * deg));
+    const double t2 = thread_cpu_seconds();
+    full += t1 - t0;
+    update += t2 - t1;
+    benchmark::DoNotOptimize(moved);
+  }
+  const auto n = static_cast<double>(state.iterations());
+  state.SetLabel(preset(state));
+  state.counters["full_ms"] = 1e3 * full / n;
+  state.counters["update_ms"] = 1e3 * update / n;
+  state.counters["update_over_full"] = update / full;
+}
+BENCHMARK(UpdateOverFull)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
 }  // namespace
 
 BENCHMARK_MAIN();

@@ -40,13 +40,17 @@ struct Preset {
   double spacing, bg_growth;
 };
 
-// Counts chosen for about 50 k, 250 k and 1 M cells in all (measured in docs/mesher.md). Coarse
-// and medium grids are for wall functions (y+ 30 and 5 with the all-y+ treatment); fine resolves
-// the viscous sublayer (y+ 1).
+// Counts chosen for about 50 k, 250 k and 1 M cells in all (56 k, 258 k, 1.06 M: docs/mesher.md).
+// Wall counts set the wall accuracy; the fin grid extent and the background's far-field growth
+// set the totals. The hull grid stays about three near-body background cells thick: thinner, the
+// background cells round its outer boundary are fringe themselves and far more fringe cells need
+// fallback donors (coarse at 0 deg, a 0.14 m hull grid in 0.1 m background cells: 10,116 of
+// 10,632 instead of 5,696 of 10,864). Coarse and medium grids are for wall functions (y+ 30 and
+// 5 with the all-y+ treatment); fine resolves the viscous sublayer (y+ 1).
 constexpr Preset kPresets[] = {
-    {"coarse", 30, 3, 28, 2, 20, 3, 1.35, 0.22, 8, 2, 5, 6, 1.35, 0.05, 0.07, 1.35},
-    {"medium", 5, 5, 48, 4, 36, 5, 1.25, 0.14, 10, 3, 8, 6, 1.25, 0.04, 0.035, 1.25},
-    {"fine", 1, 8, 96, 6, 56, 8, 1.15, 0.1, 20, 4, 16, 10, 1.2, 0.035, 0.025, 1.15},
+    {"coarse", 30, 3, 28, 2, 20, 3, 1.35, 0.2, 8, 2, 5, 6, 1.35, 0.03, 0.07, 1.6},
+    {"medium", 5, 5, 48, 4, 36, 5, 1.25, 0.14, 10, 3, 8, 6, 1.25, 0.03, 0.035, 1.4},
+    {"fine", 1, 8, 96, 6, 56, 8, 1.15, 0.07, 20, 4, 16, 10, 1.2, 0.02, 0.032, 1.15},
 };
 }  // namespace
 

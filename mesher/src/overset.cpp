@@ -40,6 +40,10 @@ int GridAssembly::count(CellStatus s) const {
   return static_cast<int>(std::count(status.begin(), status.end(), s));
 }
 
+int GridAssembly::fallbacks() const {
+  return static_cast<int>(std::count(fallback.begin(), fallback.end(), 1));
+}
+
 namespace {
 using SK = CGAL::Simple_cartesian<double>;
 using KPoint = SK::Point_3;
@@ -161,7 +165,7 @@ double violation(const GridData& d, int cell, const Eigen::Vector3d& x) {
 // from `seed` (a previous donor) or the nearest cell centre (k-d tree). A walk can end on the
 // boundary although x is inside the grid (the fluid round a convex body is not convex), or
 // circle among warped cells; then the 16 nearest cells are tried. -1: x is in no cell.
-int locate(const GridData& d, const Eigen::Vector3d& x, int seed) {
+int locate_cell(const GridData& d, const Eigen::Vector3d& x, int seed) {
   if (!d.local_box.contains(x)) return -1;
   const KPoint q(x.x(), x.y(), x.z());
   int c = seed;
@@ -197,6 +201,22 @@ int locate(const GridData& d, const Eigen::Vector3d& x, int seed) {
   return best <= 1e-3 ? best_cell : -1;
 }
 
+// The cell whose centre is nearest to x (grid frame).
+int nearest(const GridData& d, const Eigen::Vector3d& x) {
+  KSearch search(*d.tree, KPoint(x.x(), x.y(), x.z()), 1);
+  return boost::get<1>(search.begin()->first);
+}
+
+// Keeps the (at most) 16 cells of a fallback stencil whose centres are nearest to x: the weights
+// stay local, and their round-off (n^2 eps) small.
+void nearest_first(const GridData& d, const Eigen::Vector3d& x, std::vector<int>& cells) {
+  const auto dist = [&](int c) {
+    return (d.geo.cell_centre[static_cast<std::size_t>(c)] - x).squaredNorm();
+  };
+  std::sort(cells.begin(), cells.end(), [&](int a, int b) { return dist(a) < dist(b); });
+  if (cells.size() > 16) cells.resize(16);
+}
+
 // Interpolation weights reproducing linear fields: minimise sum w_i^2 / D_i subject to
 // sum w_i = 1 and sum w_i (x_i - x) = 0, D_i = 1 / |x_i - x|^2 (near cells weigh more).
 bool linear_weights(const std::vector<Eigen::Vector3d>& xs, const Eigen::Vector3d& x,
@@ -214,11 +234,19 @@ bool linear_weights(const std::vector<Eigen::Vector3d>& xs, const Eigen::Vector3
     A.col(i) << 1.0, r;
     D(i) = 1.0 / (r.squaredNorm() + 1e-3);
   }
+  // Minimum-norm solution through the 4 x 4 normal equations (A D A^T) y = e1, w = D A^T y, with
+  // two steps of iterative refinement on the constraint residual e1 - A w: the normal equations
+  // square the condition number, which matters for fallback stencils that extrapolate, and the
+  // refinement brings sum w = 1 and sum w r = 0 back to round-off at the cost of two 4 x 4 solves.
   const Eigen::Matrix4d M = A * D.asDiagonal() * A.transpose();
   const Eigen::FullPivLU<Eigen::Matrix4d> lu(M);
-  if (lu.rank() < 4) return false;
-  const Eigen::Vector4d y = lu.solve(Eigen::Vector4d(1, 0, 0, 0));
-  const Eigen::VectorXd wv = D.asDiagonal() * (A.transpose() * y);
+  if (lu.rank() < 4) return false;  // centres in a plane
+  const Eigen::Vector4d e1(1, 0, 0, 0);
+  Eigen::VectorXd wv = D.asDiagonal() * (A.transpose() * lu.solve(e1));
+  for (int step = 0; step < 2; ++step) {
+    const Eigen::Vector4d residual = e1 - A * wv;
+    wv += D.asDiagonal() * (A.transpose() * lu.solve(residual));
+  }
   w.assign(wv.data(), wv.data() + n);
   return true;
 }
@@ -238,6 +266,17 @@ struct OversetAssembler::Impl {
   std::vector<std::vector<char>> wall_hole;    // per grid: centre inside another solid
   std::unique_ptr<geometry::MyringProfile> profile;
   double cb_station = 0;
+  // Scratch for stencil searches: per grid, the stamp of the search that last reached a cell.
+  mutable std::vector<std::vector<int>> marks;
+  mutable std::vector<int> stamps;
+  // Per grid, the cell found by its last successful locate: receivers are visited in cell order,
+  // so consecutive ones are mostly neighbours and a walk from there takes a step or two instead
+  // of a k-d tree search (the walk still ends only in the cell containing the point).
+  mutable std::vector<int> found;
+  [[nodiscard]] int last_found(int h) const { return found[static_cast<std::size_t>(h)]; }
+  void remember(int h, int loc) const {
+    if (loc >= 0) found[static_cast<std::size_t>(h)] = loc;
+  }
 
   // Steps 1-3 for the given cells of every grid (all others keep their statuses and depths).
   void run(Assembly& a, const std::vector<std::vector<int>>& cells) {
@@ -345,7 +384,8 @@ struct OversetAssembler::Impl {
         if (!boxes[k].contains(x)) continue;
         const auto hu = static_cast<std::size_t>(others[k]);
         const auto& hd = grids[hu];
-        const int loc = locate(hd, hd.grid->placement.inverse() * x, -1);
+        const int loc = locate_cell(hd, hd.grid->placement.inverse() * x, last_found(others[k]));
+        remember(others[k], loc);
         if (loc < 0) continue;
         const auto lu = static_cast<std::size_t>(loc);
         if (wall_hole[hu][lu] || depth[hu][lu] < settings.overlap_cells * d.size[cu]) continue;
@@ -444,44 +484,113 @@ struct OversetAssembler::Impl {
     }
   }
 
-  // Donor stencil of one fringe cell; false when no grid offers an active donor.
-  bool find_donor(int g, int c, int seed_grid, int seed_cell, Assembly& a,
+  // Stencil in grid h round the located cell `loc` for the point xl (h's frame). An active `loc`
+  // that contains xl (`containing`): loc and its active face neighbours, grown ring by ring (at
+  // most three) while the centres do not span 3D (at the edge of an active region they may all lie
+  // in one plane). A `loc` that is not active (a fallback donor: the point lies in a hole or fringe
+  // cell of h, e.g. a fin-grid cell straddling the hull wall at the fin root): the active cells
+  // within `fallback_rings` face steps of it, through any cells. The weights reproduce linear
+  // fields either way; the fallback extrapolates over at most those few cells.
+  bool stencil_in(int h, const Eigen::Vector3d& xl, int loc, bool containing,
+                  const std::vector<CellStatus>& hs, std::vector<int>& stencil,
+                  std::vector<double>& w) const {
+    const auto& hd = grids[static_cast<std::size_t>(h)];
+    // Cells reached are stamped (mark[cell] == stamp) instead of searched for in a list.
+    auto& mark = marks[static_cast<std::size_t>(h)];
+    const int stamp = ++stamps[static_cast<std::size_t>(h)];
+    std::vector<int> reached{loc};
+    mark[static_cast<std::size_t>(loc)] = stamp;
+    stencil.clear();
+    if (containing) stencil.push_back(loc);
+    const int rings = containing ? 3 : settings.fallback_rings;
+    std::size_t begin = 0;
+    for (int ring = 0; ring < rings; ++ring) {
+      const std::size_t end = reached.size();
+      for (std::size_t i = begin; i < end; ++i)
+        hd.each_neighbour(reached[i], [&](int n) {
+          const auto nu = static_cast<std::size_t>(n);
+          if (mark[nu] == stamp) return;
+          const bool act = hs[nu] == CellStatus::active;
+          if (containing && !act) return;  // a containing donor's rings grow through active cells
+          mark[nu] = stamp;
+          reached.push_back(n);
+          if (act) stencil.push_back(n);
+        });
+      begin = end;
+      if (!containing && ring + 1 < rings && stencil.size() < 8) continue;
+      if (!containing) nearest_first(hd, xl, stencil);
+      std::vector<Eigen::Vector3d> xs;
+      for (int c : stencil) xs.push_back(hd.geo.cell_centre[static_cast<std::size_t>(c)]);
+      if (linear_weights(xs, xl, w)) return true;
+    }
+    if (containing) return false;
+    // Last resort, when the rings stay inside a thick hole: the nearest active cell centres.
+    KSearch search(*hd.tree, KPoint(xl.x(), xl.y(), xl.z()), 64);
+    stencil.clear();
+    std::vector<Eigen::Vector3d> xs;
+    for (const auto& hit : search) {
+      const int cell = boost::get<1>(hit.first);
+      if (hs[static_cast<std::size_t>(cell)] != CellStatus::active) continue;
+      stencil.push_back(cell);
+      xs.push_back(hd.geo.cell_centre[static_cast<std::size_t>(cell)]);
+      if (stencil.size() == 12) break;
+    }
+    return linear_weights(xs, xl, w);
+  }
+
+  // Donor stencil of one fringe cell; false when no grid offers an active donor. First a cell of
+  // another grid that contains the centre and is active, in priority order; failing that, the
+  // nearest active cells round the containing cell in the grid where they extrapolate least (a
+  // lower-quality donor).
+  bool find_donor(int g, int c, int seed_grid, int seed_cell, const Assembly& a,
                   std::vector<int>& cells_out, std::vector<double>& w_out, int& donor_grid,
-                  int& donor_cell) const {
+                  int& donor_cell, bool& fallback) const {
     const Eigen::Vector3d x = body(g, c);
+    // (grid, cell) containing x, any status; or, when x lies in no cell of a grid but within its
+    // box widened by the receiver's fringe depth (between a wall and its triangulation, just
+    // past a corner of its outer boundary), the cell whose centre is nearest.
+    const double reach = settings.fringe_layers *
+                         grids[static_cast<std::size_t>(g)].size[static_cast<std::size_t>(c)];
+    std::vector<std::pair<int, int>> located;  // the cells that are not active donors
     for (int h : order) {
       if (h == g) continue;
       const auto& hd = grids[static_cast<std::size_t>(h)];
       const auto& hs = a.grids[static_cast<std::size_t>(h)].status;
       const Eigen::Vector3d xl = hd.grid->placement.inverse() * x;
-      const int loc = locate(hd, xl, h == seed_grid ? seed_cell : -1);
-      if (loc < 0 || hs[static_cast<std::size_t>(loc)] != CellStatus::active) continue;
-      // The donor and its active face neighbours, grown ring by ring (at most three) while the
-      // centres do not span 3D (at the edge of an active region they may all lie in one plane).
-      std::vector<int> stencil{loc};
-      const auto add_ring = [&] {
-        const auto ring = stencil;
-        for (int cell : ring)
-          hd.each_neighbour(cell, [&](int n) {
-            if (hs[static_cast<std::size_t>(n)] == CellStatus::active &&
-                std::find(stencil.begin(), stencil.end(), n) == stencil.end())
-              stencil.push_back(n);
-          });
-      };
-      bool ok = false;
-      for (int ring = 0; ring < 3 && !ok; ++ring) {
-        add_ring();
-        std::vector<Eigen::Vector3d> xs;
-        for (int s : stencil) xs.push_back(hd.geo.cell_centre[static_cast<std::size_t>(s)]);
-        ok = linear_weights(xs, xl, w_out);
+      int loc = locate_cell(hd, xl, h == seed_grid ? seed_cell : last_found(h));
+      remember(h, loc);
+      if (loc >= 0 && hs[static_cast<std::size_t>(loc)] == CellStatus::active &&
+          stencil_in(h, xl, loc, true, hs, cells_out, w_out)) {
+        donor_grid = h;
+        donor_cell = loc;
+        fallback = false;
+        return true;
       }
-      if (!ok) continue;
-      cells_out = std::move(stencil);
-      donor_grid = h;
-      donor_cell = loc;
-      return true;
+      if (loc < 0 && hd.local_box.contains(xl, reach)) loc = nearest(hd, xl);
+      if (loc >= 0) located.emplace_back(h, loc);
     }
-    return false;
+    // Among the grids' fallback stencils, the one that extrapolates least: the smallest distance
+    // from x to its nearest centre, in that cell's size (a donor-quality rule; the priority order
+    // decides ties).
+    double best = kInf;
+    std::vector<int> cells;
+    std::vector<double> w;
+    for (const auto& [h, loc] : located) {
+      const auto& hd = grids[static_cast<std::size_t>(h)];
+      const auto& hs = a.grids[static_cast<std::size_t>(h)].status;
+      const Eigen::Vector3d xl = hd.grid->placement.inverse() * x;
+      if (!stencil_in(h, xl, loc, false, hs, cells, w)) continue;
+      const auto first = static_cast<std::size_t>(cells.front());  // nearest first
+      const double extrapolation = (hd.geo.cell_centre[first] - xl).norm() / hd.size[first];
+      if (extrapolation >= best) continue;
+      best = extrapolation;
+      cells_out = cells;
+      w_out = w;
+      donor_grid = h;
+      donor_cell = cells.front();
+    }
+    fallback = best < kInf;
+    return fallback;
   }
 
   // Donors for every fringe cell. With a previous assembly, a stencil is kept when its receiver
@@ -496,6 +605,7 @@ struct OversetAssembler::Impl {
       const auto n = static_cast<std::size_t>(grids[g].grid->cells);
       ga.donor_grid.assign(n, -1);
       ga.donor_cell.assign(n, -1);
+      ga.fallback.assign(n, 0);
       ga.stencil_offsets.assign(1, 0);
       ga.stencil_cells.clear();
       ga.stencil_weights.clear();
@@ -509,10 +619,18 @@ struct OversetAssembler::Impl {
             seed_cell = previous->grids[g].donor_cell[c];
           }
           int dg = -1, dc = -1;
-          if (find_donor(static_cast<int>(g), static_cast<int>(c), seed_grid, seed_cell, a, cells,
-                         w, dg, dc)) {
+          bool fb = false;
+          if (previous != nullptr &&
+              refit(a, previous->grids[g], static_cast<int>(g), static_cast<int>(c), cells, w)) {
+            ga.donor_grid[c] = previous->grids[g].donor_grid[c];
+            ga.donor_cell[c] = previous->grids[g].donor_cell[c];
+            ga.stencil_cells.insert(ga.stencil_cells.end(), cells.begin(), cells.end());
+            ga.stencil_weights.insert(ga.stencil_weights.end(), w.begin(), w.end());
+          } else if (find_donor(static_cast<int>(g), static_cast<int>(c), seed_grid, seed_cell, a,
+                                cells, w, dg, dc, fb)) {
             ga.donor_grid[c] = dg;
             ga.donor_cell[c] = dc;
+            ga.fallback[c] = fb ? 1 : 0;
             ga.stencil_cells.insert(ga.stencil_cells.end(), cells.begin(), cells.end());
             ga.stencil_weights.insert(ga.stencil_weights.end(), w.begin(), w.end());
           } else {
@@ -522,6 +640,7 @@ struct OversetAssembler::Impl {
           const auto& pg = previous->grids[g];
           ga.donor_grid[c] = pg.donor_grid[c];
           ga.donor_cell[c] = pg.donor_cell[c];
+          ga.fallback[c] = pg.fallback[c];
           const auto b = static_cast<std::size_t>(pg.stencil_offsets[c]);
           const auto e = static_cast<std::size_t>(pg.stencil_offsets[c + 1]);
           ga.stencil_cells.insert(ga.stencil_cells.end(),
@@ -536,11 +655,45 @@ struct OversetAssembler::Impl {
     }
   }
 
+  // After a small move, the previous stencil of a receiver is refitted (new weights, same cells)
+  // when its donor cell still contains the centre, its cells are all still active, and no grid of
+  // higher priority now offers an active cell containing the centre: the donor a full search would
+  // choose is then the same cell. A fallback stencil is refitted while no grid offers an active
+  // containing cell and its first cell stays within the fallback reach.
+  bool refit(const Assembly& a, const GridAssembly& pg, int g, int c, std::vector<int>& cells,
+             std::vector<double>& w) const {
+    const auto cu = static_cast<std::size_t>(c);
+    if (pg.status[cu] != CellStatus::fringe || pg.donor_grid[cu] < 0) return false;
+    const bool fallback = pg.fallback[cu] != 0;
+    const int dg = pg.donor_grid[cu];
+    const auto& hd = grids[static_cast<std::size_t>(dg)];
+    const auto& hs = a.grids[static_cast<std::size_t>(dg)].status;
+    const Eigen::Vector3d x = body(g, c);
+    const Eigen::Vector3d xl = hd.grid->placement.inverse() * x;
+    const int donor = pg.donor_cell[cu];
+    const double size = hd.size[static_cast<std::size_t>(donor)];
+    if (fallback ? (hd.geo.cell_centre[static_cast<std::size_t>(donor)] - xl).norm() >
+                       settings.fallback_rings * size
+                 : violation(hd, donor, xl) > 1e-12 * size)
+      return false;
+    cells.assign(pg.stencil_cells.begin() + pg.stencil_offsets[cu],
+                 pg.stencil_cells.begin() + pg.stencil_offsets[cu + 1]);
+    for (int s : cells)
+      if (hs[static_cast<std::size_t>(s)] != CellStatus::active) return false;
+    if (outranked(a, g, c, dg, fallback)) return false;
+    std::vector<Eigen::Vector3d> xs;
+    for (int s : cells) xs.push_back(hd.geo.cell_centre[static_cast<std::size_t>(s)]);
+    return linear_weights(xs, xl, w);
+  }
+
+  // A stencil between two grids that did not move is kept as it is (weights included) when its
+  // cells are all still active and, for a receiver within reach of the moved fins (`redo`), no
+  // grid that outranks its donor grid now offers an active cell containing it.
   [[nodiscard]] bool keep(const Assembly& a, const Assembly& previous,
                           const std::vector<std::vector<char>>& redo, std::size_t g,
                           std::size_t c) const {
     const auto& pg = previous.grids[g];
-    if (redo[g][c] || pg.status[c] != CellStatus::fringe) return false;
+    if (pg.status[c] != CellStatus::fringe) return false;
     if (grids[g].fin >= 0) return false;  // the receiver moved
     const int dg = pg.donor_grid[c];
     if (dg < 0 || grids[static_cast<std::size_t>(dg)].fin >= 0) return false;  // donor moved
@@ -549,7 +702,25 @@ struct OversetAssembler::Impl {
       if (ds[static_cast<std::size_t>(pg.stencil_cells[static_cast<std::size_t>(k)])] !=
           CellStatus::active)
         return false;
-    return true;
+    return !redo[g][c] ||
+           !outranked(a, static_cast<int>(g), static_cast<int>(c), dg, pg.fallback[c] != 0);
+  }
+
+  // Whether a grid before `dg` in priority order (any grid, for a fallback donor) now has an
+  // active cell containing the centre of receiver c of grid g.
+  [[nodiscard]] bool outranked(const Assembly& a, int g, int c, int dg, bool fallback) const {
+    const Eigen::Vector3d x = body(g, c);
+    for (int h : order) {
+      if (h == dg && !fallback) break;
+      if (h == g) continue;
+      const auto& od = grids[static_cast<std::size_t>(h)];
+      const int loc = locate_cell(od, od.grid->placement.inverse() * x, last_found(h));
+      remember(h, loc);
+      if (loc >= 0 && a.grids[static_cast<std::size_t>(h)].status[static_cast<std::size_t>(loc)] ==
+                          CellStatus::active)
+        return true;
+    }
+    return false;
   }
 };
 
@@ -597,6 +768,9 @@ OversetAssembler::OversetAssembler(GridSystem& system, const geometry::Vehicle& 
     m.wall_dist.push_back(std::move(w));
     m.wall_hole.emplace_back(n, 0);
     m.depth.emplace_back(n, kInf);
+    m.marks.emplace_back(n, 0);
+    m.stamps.push_back(0);
+    m.found.push_back(-1);
   }
 }
 
@@ -605,6 +779,11 @@ OversetAssembler::~OversetAssembler() = default;
 
 Eigen::Vector3d OversetAssembler::centre(int grid, int cell) const {
   return impl_->body(grid, cell);
+}
+
+int OversetAssembler::locate(int grid, const Eigen::Vector3d& x) const {
+  const auto& d = impl_->grids.at(static_cast<std::size_t>(grid));
+  return locate_cell(d, d.grid->placement.inverse() * x, -1);
 }
 
 Assembly OversetAssembler::assemble(const std::vector<double>& deflections) {

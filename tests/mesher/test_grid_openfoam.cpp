@@ -86,15 +86,15 @@ TEST(GridOpenFoam, CheckMeshAgrees) {
       number_after(out, "Total volume ="), q.total_volume);
 }
 
-// The component grids of the coarse preset: checkMesh finds each one OK (closed patches of the
-// hull grid included) and agrees with auvloop on the total volume and the worst
-// non-orthogonality.
+// The component grids of the coarse preset (hull, one fin, background): checkMesh finds each one
+// OK (closed patches of the hull grid included) and agrees with auvloop on the total volume and
+// the worst non-orthogonality.
 TEST(GridOpenFoam, CheckMeshAcceptsTheComponentGrids) {
   if (!std::filesystem::exists(kBashrc))
     GTEST_SKIP() << "OpenFOAM (Debian package openfoam) is not installed";
   const auto v = auvloop::geometry::preset_vehicle("remus100");
   const GridSystem sys = build_grid_system(v, mesh_preset("coarse", v));
-  for (const Grid* g : {&sys.hull, &sys.fins.front()}) {
+  for (const Grid* g : {&sys.hull, &sys.fins.front(), &sys.background}) {
     auvloop::test::TempDir tmp;
     write_case(tmp, *g);
     const std::string out = check_mesh(tmp.path());

@@ -47,9 +47,9 @@ void check_preset(const std::string& name, long long target) {
                   geo.face_centre[fs].y(), geo.face_centre[fs].z());
     }
   }
-  // "Roughly" the budget: within a factor 1.5 either way.
-  EXPECT_GT(sys.total_cells(), target / 3 * 2);
-  EXPECT_LT(sys.total_cells(), target / 2 * 3);
+  // The budget, within 15 % either way.
+  EXPECT_GT(sys.total_cells(), target * 85 / 100);
+  EXPECT_LT(sys.total_cells(), target * 115 / 100);
 }
 }  // namespace
 

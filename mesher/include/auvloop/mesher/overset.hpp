@@ -11,11 +11,15 @@
 //      least `overlap_cells` of its own sizes deep inside that grid's active region;
 //   3. fringe: `fringe_layers` layers of cells next to holes and, for component grids, next to the
 //      outer (overset) boundary;
-//   4. donors: the cell of another grid (priority order) that contains the fringe cell's centre,
-//      found by a walk through the cells from the nearest cell centre (a k-d tree), or from the
-//      previous donor in an incremental update; it must be active, as must the face neighbours
-//      that complete the stencil. Weights: the minimum (inverse-distance weighted) norm solution of
-//      sum w = 1, sum w x = x_fringe, so linear fields are interpolated exactly.
+//   4. donors: the cell of another grid (priority order) that contains the fringe cell's centre
+//      and is active, found by a walk through the cells from the nearest cell centre (a k-d tree),
+//      or from the previous donor in an incremental update; the stencil is it and its active
+//      neighbours. Failing that in every grid (at the fin-hull junction the containing fin-grid
+//      cell straddles the hull wall and is a hole), a fallback donor: the active cells nearest to
+//      the containing cell (or, just outside a grid, to its nearest cell) in the grid where they
+//      lie nearest to the centre, in their cell sizes. Weights: the minimum (inverse-distance
+//      weighted) norm solution of sum w = 1, sum w x = x_fringe, so linear fields are interpolated
+//      exactly, inside or outside the stencil's hull.
 // Invariants of a result: no donor cell is anything but active; weights sum to one.
 #pragma once
 
@@ -34,12 +38,16 @@ const char* to_string(CellStatus s);
 struct GridAssembly {
   std::vector<CellStatus> status;
   // Per fringe cell (CSR over cells; empty for the others): donor grid, donor cells, weights.
-  std::vector<int> donor_grid;       // per cell, -1 if none
-  std::vector<int> donor_cell;       // per cell: the cell containing the centre, -1 if none
+  std::vector<int> donor_grid;  // per cell, -1 if none
+  std::vector<int> donor_cell;  // per cell: the cell containing the centre, -1 if none
+  // Per cell: 1 when the donors are a fallback (the containing cell was not active; donor_cell is
+  // then the stencil's first active cell).
+  std::vector<char> fallback;
   std::vector<int> stencil_offsets;  // cells + 1
   std::vector<int> stencil_cells;
   std::vector<double> stencil_weights;
   [[nodiscard]] int count(CellStatus s) const;
+  [[nodiscard]] int fallbacks() const;
 };
 
 struct Assembly {
@@ -56,6 +64,10 @@ struct OversetSettings {
   // finds active donors among this grid's cells (the 0.87 of a size to the farthest corner).
   double overlap_cells = 3.5;
   double surface_edge = 0.004;  // m, triangulation of hull and fins for the inside tests
+  // When the cell of another grid containing a fringe centre is not active (a fin-grid cell
+  // straddling the hull wall at the fin root, a hull cell beside a fin), the donors are the active
+  // cells within this many face steps of it.
+  int fallback_rings = 5;
 };
 
 class OversetAssembler {
@@ -68,12 +80,16 @@ class OversetAssembler {
   // Full assembly with the fins at `deflections` (rad, one per fin); moves the fin grids'
   // placements of the system given to the constructor.
   Assembly assemble(const std::vector<double>& deflections);
-  // After a small fin rotation: only cells near the fins are re-examined, and donors are found by
-  // walking from the previous ones. Gives the same statuses as a full assembly (tested).
+  // After a small fin rotation: only cells near the fins are re-examined; stencils between grids
+  // that did not move are kept, the others refitted (new weights on the previous cells) while
+  // their donor still contains the centre and nothing outranks it, or else searched from the
+  // previous donor. Gives the same statuses as a full assembly (tested).
   Assembly update(const Assembly& previous, const std::vector<double>& deflections);
 
   // Body-frame centre of a cell (placement applied).
   [[nodiscard]] Eigen::Vector3d centre(int grid, int cell) const;
+  // The cell of a grid (GridSystem::grids() order) containing a body-frame point, -1 if none.
+  [[nodiscard]] int locate(int grid, const Eigen::Vector3d& x) const;
 
  private:
   struct Impl;
