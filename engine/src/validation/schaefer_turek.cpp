@@ -30,7 +30,7 @@ class Channel {
  public:
   Channel(int m, double Um, const fv::PimpleSettings& s) : Um_(Um) {
     spec_.cells_per_side = m;
-    spec_.radial_cells = m;
+    spec_.radial_cells = m / 2;
     spec_.downstream_cells = 2 * m;
     grid_ = mesher::cylinder_channel(spec_);
     mesh_ = std::make_unique<fv::Mesh>(grid_);

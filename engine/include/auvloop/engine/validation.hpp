@@ -69,9 +69,9 @@ struct TaylorGreenRun {
 TaylorGreenRun taylor_green(int n, int steps, double end_time, double nu);
 double l2_difference(const TaylorGreenRun& a, const TaylorGreenRun& b);
 
-// Schaefer-Turek 2D-1 (steady, Re = 20) on the cylinder O-grid with `cells_per_side` cells per
-// side of the O-grid's rectangle (as many radially, twice as many downstream), pseudo-time step
-// dt (0.008 s runs on m = 16; m = 32 needs 0.004 s: the skewed cells at the channel corners).
+// Schaefer-Turek 2D-1 (steady, Re = 20) on the cylinder grid with `cells_per_side` cells per
+// side of the O-grid's square box (half as many radially, twice as many downstream), pseudo-time
+// step dt (0.008 s runs up to m = 32; m = 48 needs less).
 struct CylinderResult {
   int cells = 0, steps = 0;
   double final_change = 0;
