@@ -112,17 +112,39 @@ void add_block(PointSet& ps, std::vector<std::array<int, 8>>& hexes, int ni, int
       hexes.push_back(h);
     }
 }
+
+// Uniform nodes from a to b with about `h` spacing (at least one cell).
+std::vector<double> uniform_nodes(double a, double b, double h) {
+  const int n = std::max(1, static_cast<int>(std::lround((b - a) / h)));
+  return graded_nodes(a, b, n);
+}
+
+// A Cartesian block on the given x and y nodes.
+void add_cartesian(PointSet& ps, std::vector<std::array<int, 8>>& hexes,
+                   const std::vector<double>& x, const std::vector<double>& y, double dz) {
+  add_block(
+      ps, hexes, static_cast<int>(x.size()), static_cast<int>(y.size()),
+      [&](int i, int j) -> Eigen::Vector2d {
+        return {x[static_cast<std::size_t>(i)], y[static_cast<std::size_t>(j)]};
+      },
+      dz);
+}
+
+std::vector<double> concat(std::vector<double> a, const std::vector<double>& b) {
+  a.insert(a.end(), b.begin() + 1, b.end());  // b starts where a ends
+  return a;
+}
 }  // namespace
 
 Grid cylinder_channel(const CylinderChannelSpec& s, const std::string& name) {
-  const double x0 = s.cx - s.box_half_width, x1 = s.cx + s.box_half_width;
-  if (x0 < -1e-12 || x1 >= s.length || s.cy - s.radius <= 0 || s.cy + s.radius >= s.height)
+  const double b = s.box_half_width;
+  const double x0 = s.cx - b, x1 = s.cx + b, y0 = s.cy - b, y1 = s.cy + b;
+  if (b <= s.radius || x0 < -1e-12 || x1 >= s.length || y0 < -1e-12 || y1 > s.height + 1e-12)
     throw std::invalid_argument("cylinder_channel: the cylinder's box must fit in the channel");
   const int m = s.cells_per_side;
-  // Rectangle corners counter-clockwise from bottom-right; side q runs from corner q to q + 1.
-  const std::array<Eigen::Vector2d, 4> corner{Eigen::Vector2d(x1, 0), Eigen::Vector2d(x1, s.height),
-                                              Eigen::Vector2d(x0, s.height),
-                                              Eigen::Vector2d(x0, 0)};
+  // Box corners counter-clockwise from bottom-right; side q runs from corner q to q + 1.
+  const std::array<Eigen::Vector2d, 4> corner{Eigen::Vector2d(x1, y0), Eigen::Vector2d(x1, y1),
+                                              Eigen::Vector2d(x0, y1), Eigen::Vector2d(x0, y0)};
   const Eigen::Vector2d c(s.cx, s.cy);
   std::array<double, 4> angle{};
   for (std::size_t q = 0; q < 4; ++q)
@@ -147,15 +169,24 @@ Grid cylinder_channel(const CylinderChannelSpec& s, const std::string& name) {
         },
         s.thickness);
   }
+  // Cartesian blocks around the box with about the box side's spacing (none where the box
+  // touches the channel's side), so that no O-grid corner lies on the channel's boundary.
+  const double h = 2 * b / m;
+  const auto xb = graded_nodes(x0, x1, m), yb = graded_nodes(y0, y1, m);
+  std::vector<std::vector<double>> xs{xb}, ys{yb};
+  if (x0 > 1e-12) xs.push_back(uniform_nodes(0, x0, h));
+  if (y0 > 1e-12) ys.push_back(uniform_nodes(0, y0, h));
+  if (y1 < s.height - 1e-12) ys.push_back(uniform_nodes(y1, s.height, h));
+  for (const auto& x : xs)
+    for (const auto& y : ys)
+      if (&x != &xs[0] || &y != &ys[0]) add_cartesian(ps, hexes, x, y, s.thickness);
+  std::vector<double> y_all = yb;
+  if (y0 > 1e-12) y_all = concat(uniform_nodes(0, y0, h), y_all);
+  if (y1 < s.height - 1e-12) y_all = concat(y_all, uniform_nodes(y1, s.height, h));
   const auto xd =
       graded_nodes(x1, s.length, s.downstream_cells,
                    std::pow(s.downstream_ratio, 1.0 / std::max(1, s.downstream_cells - 1)));
-  add_block(
-      ps, hexes, s.downstream_cells + 1, m + 1,
-      [&](int i, int j) -> Eigen::Vector2d {
-        return {xd[static_cast<std::size_t>(i)], s.height * j / m};
-      },
-      s.thickness);
+  add_cartesian(ps, hexes, xd, y_all, s.thickness);
   std::vector<Patch> patches{
       {"inlet", PatchType::inlet, 0, 0, -1}, {"outlet", PatchType::outlet, 0, 0, -1},
       {"walls", PatchType::wall, 0, 0, -1},  {"cylinder", PatchType::wall, 0, 0, -1},
@@ -164,7 +195,7 @@ Grid cylinder_channel(const CylinderChannelSpec& s, const std::string& name) {
   auto classify = [&](const Eigen::Vector3d& f) {
     if (std::abs(f.z()) < tol) return 4;
     if (std::abs(f.z() - s.thickness) < tol) return 5;
-    if (std::abs(f.x() - x0) < tol) return 0;
+    if (std::abs(f.x()) < tol) return 0;
     if (std::abs(f.x() - s.length) < tol) return 1;
     if (std::abs(f.y()) < tol || std::abs(f.y() - s.height) < tol) return 2;
     return 3;  // the only other boundary is the cylinder

@@ -11,7 +11,8 @@ using auvloop::test::run_cli;
 TEST(ValidateCli, ListsTheImplementedCases) {
   const auto r = run_cli("validate --list");
   EXPECT_EQ(r.exit_code, 0) << r.output;
-  for (const char* name : {"mms", "taylor-green", "cavity-re100", "cavity-re1000"})
+  for (const char* name : {"mms", "taylor-green", "cavity-re100", "cavity-re1000",
+                           "schaefer-turek-2d1", "schaefer-turek-2d2"})
     EXPECT_NE(r.output.find(name), std::string::npos) << name;
 }
 

@@ -19,7 +19,10 @@ TEST(CylinderGrid, ValidWithTheVolumeOfTheChannelMinusThePolygon) {
   const Grid g = cylinder_channel(s);
   const auto geo = compute_geometry(g);
   EXPECT_NO_THROW(validate(g, geo));
-  EXPECT_EQ(g.cells, 4 * 8 * 6 + 10 * 8);
+  // Box [0.1, 0.3]^2 with 8 cells per side (spacing 0.025 m): 4 cells to the inlet, 4 below the
+  // box, 4 above it (0.11 m); O-grid 4 x 8 x 6, Cartesian blocks 4 x (4 + 8 + 4) + 8 x (4 + 4),
+  // downstream 10 x 16.
+  EXPECT_EQ(g.cells, 4 * 8 * 6 + 4 * 16 + 8 * 8 + 10 * 16);
   const int n = 4 * s.cells_per_side;  // chords on the cylinder (uniform in angle per quadrant)
   double polygon = 0;
   // Per-quadrant angular spacing differs, so sum the triangles of the actual cylinder faces.
@@ -37,8 +40,8 @@ TEST(CylinderGrid, ValidWithTheVolumeOfTheChannelMinusThePolygon) {
   double volume = 0;
   for (double v : geo.cell_volume) volume += v;
   EXPECT_NEAR(volume, (s.length * s.height - polygon) * s.thickness, 1e-12);
-  EXPECT_EQ(g.patches[0].size, s.cells_per_side);  // inlet: the O-grid's left side
-  EXPECT_EQ(g.patches[1].size, s.cells_per_side);  // outlet
-  EXPECT_EQ(g.patches[2].size, 2 * (s.cells_per_side + s.downstream_cells));
+  EXPECT_EQ(g.patches[0].size, 16);  // inlet: 4 + 8 + 4
+  EXPECT_EQ(g.patches[1].size, 16);  // outlet
+  EXPECT_EQ(g.patches[2].size, 2 * (4 + 8 + 10));
   EXPECT_EQ(g.patches[4].size, g.cells);
 }

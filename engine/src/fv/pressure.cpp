@@ -10,11 +10,61 @@
 //      p relaxed in all but the final outer iteration; U = HbyA - D grad(p).
 #include "auvloop/engine/fv/pimple.hpp"
 
+#include <Eigen/LU>
+
 namespace auvloop::engine::fv {
 
 namespace {
 Eigen::Vector3d cell_vector(const std::array<std::vector<double>, 3>& u, std::size_t c) {
   return {u[0][c], u[1][c], u[2][c]};
+}
+
+// The value the cell gradients see on zero-gradient pressure patches (walls, inlets). p_b = p_P
+// there means dp/dn = 0 to the least-squares fit, which is wrong wherever the wall-normal pressure
+// gradient is not zero (mu d2u_n/dn2 at a no-slip wall, the stagnation region of a cylinder): the
+// wall cells' grad(p), and through U = HbyA - D grad(p) their velocity, then carry an O(1) error.
+// Instead p_b = p_P + g_P . (x_b - x_P) with g_P the least-squares gradient of the cell's other
+// points (neighbours, fixed and empty faces): consistent with the fit, so every later grad(p)
+// returns g_P there. The pressure equation still sees the flux condition only.
+bool free_pressure_face(const Mesh& mesh, const ScalarField& p, int f) {
+  if (f < mesh.internal_faces()) return false;
+  return p.bcs[static_cast<std::size_t>(mesh.patch_of(f - mesh.internal_faces()))].kind ==
+         BcKind::zero_gradient;
+}
+
+void extrapolate_zero_gradient(const Mesh& mesh, ScalarField& p) {
+  for (int c = 0; c < mesh.cells(); ++c) {
+    const auto cell_faces = mesh.cell_faces(c);
+    bool any = false;
+    for (int f : cell_faces) any = any || free_pressure_face(mesh, p, f);
+    if (!any) continue;
+    Eigen::Matrix3d M = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
+    const auto P = static_cast<std::size_t>(c);
+    for (int f : cell_faces) {
+      if (free_pressure_face(mesh, p, f)) continue;
+      double other;
+      Eigen::Vector3d d;
+      if (f < mesh.internal_faces()) {
+        const int n = mesh.owner(f) == c ? mesh.neighbour(f) : mesh.owner(f);
+        d = mesh.centre(n) - mesh.centre(c);
+        other = p.cells[static_cast<std::size_t>(n)];
+      } else {
+        d = mesh.face_centre(f) - mesh.centre(c);
+        other = p.boundary[static_cast<std::size_t>(f - mesh.internal_faces())];
+      }
+      M += d * d.transpose() / d.squaredNorm();
+      rhs += d * (other - p.cells[P]) / d.squaredNorm();
+    }
+    const Eigen::FullPivLU<Eigen::Matrix3d> lu(M);
+    if (!lu.isInvertible()) continue;  // too few other points: keep p_b = p_P
+    const Eigen::Vector3d g = lu.solve(rhs);
+    for (int f : cell_faces) {
+      if (!free_pressure_face(mesh, p, f)) continue;
+      p.boundary[static_cast<std::size_t>(f - mesh.internal_faces())] =
+          p.cells[P] + g.dot(mesh.face_centre(f) - mesh.centre(c));
+    }
+  }
 }
 }  // namespace
 
@@ -112,6 +162,7 @@ void Pimple::correct_pressure(const Momentum& m, StepReport& r, bool first, bool
       p.cells[c] = p_prev[c] + settings_.relax_p * (p.cells[c] - p_prev[c]);
   }
   p.update_boundary(mesh_);
+  extrapolate_zero_gradient(mesh_, p);
   const auto gp = grad(mesh_, p);
   for (std::size_t i = 0; i < 3; ++i) {
     if (!active_[i]) continue;

@@ -1,23 +1,144 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Schaefer and Turek (1996) DFG benchmark 2D-1: steady flow past a cylinder (D = 0.1 m, centre
-// (0.2, 0.2)) in a channel [0, 2.2] x [0, 0.41] m, parabolic inflow with Um = 0.3 m/s, nu = 1e-3,
-// Re = Ubar D / nu = 20. Reference intervals: shared/reference/validation-data.md, section 2.
-// The steady state is reached by pseudo-time marching (Euler); forces are integrated over the
-// cylinder faces: pressure p S_f and viscous nu dU/dn |S|.
-//
-// NOT YET A VALIDATION CASE (not listed by `auvloop validate`): the results converge at about
-// first order and are outside the reference intervals on the grids tried (docs/cfd.md,
-// "Schaefer-Turek: open").
+// Schaefer and Turek (1996) DFG benchmarks 2D-1 and 2D-2: flow past a cylinder (D = 0.1 m, centre
+// (0.2, 0.2)) in a channel [0, 2.2] x [0, 0.41] m, parabolic inflow, nu = 1e-3 m^2/s, rho = 1.
+// 2D-1: Um = 0.3 m/s, Re = 20, steady (reached by pseudo-time marching, Euler).
+// 2D-2: Um = 1.5 m/s, Re = 100, periodic vortex shedding (BDF2, fixed dt).
+// Reference intervals: shared/reference/validation-data.md, section 2.
+// Forces are integrated over the cylinder faces: wall pressure p_w S_f and viscous
+// nu dU/dn_w |S_f|, both from the second-order two-cell wall stencil (wall_stencil.hpp).
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
+#include <numbers>
 
 #include "auvloop/engine/fv/pimple.hpp"
 #include "auvloop/engine/validation.hpp"
 #include "auvloop/mesher/cylinder_grid.hpp"
+#include "wall_stencil.hpp"
 
 namespace auvloop::engine::validation {
 
 namespace {
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// The DFG channel on the O-grid with m cells per side of the O-grid's rectangle, the parabolic
+// inflow of peak speed Um, no-slip walls and cylinder, p = 0 at the outlet.
+class Channel {
+ public:
+  Channel(int m, double Um, const fv::PimpleSettings& s) : Um_(Um) {
+    spec_.cells_per_side = m;
+    spec_.radial_cells = m / 2;
+    spec_.downstream_cells = 2 * m;
+    grid_ = mesher::cylinder_channel(spec_);
+    mesh_ = std::make_unique<fv::Mesh>(grid_);
+    flow_ = std::make_unique<fv::Pimple>(*mesh_, s);
+    auto& U = flow_->U;
+    U.fix(*mesh_, "walls", {0, 0, 0});
+    U.fix(*mesh_, "cylinder", {0, 0, 0});
+    U.fix(*mesh_, "inlet", {0, 0, 0});
+    const auto inlet = static_cast<std::size_t>(fv::patch_index(*mesh_, "inlet"));
+    const double H = spec_.height;
+    // The face average of the parabola (its centre value plus h^2 u'' / 24), so that the inflow
+    // is exactly Ubar H per unit depth on every grid.
+    for (int i = 0; i < grid_.patches[inlet].size; ++i) {
+      const int f = grid_.patches[inlet].start + i;
+      const double y = mesh_->face_centre(f).y(), h = mesh_->area(f).norm() / spec_.thickness;
+      U.c[0].bcs[inlet].value[static_cast<std::size_t>(i)] =
+          4 * Um * (y * (H - y) - h * h / 12) / (H * H);
+    }
+    flow_->p.fix(*mesh_, "outlet", 0.0);
+    flow_->initialise();
+    cylinder_ = wall_stencils(*mesh_, fv::patch_index(*mesh_, "cylinder"));
+  }
+  fv::Pimple& flow() { return *flow_; }
+  const fv::Mesh& mesh() const { return *mesh_; }
+  double ubar() const { return 2 * Um_ / 3; }
+  // Turns the cylinder wall at surface speed `speed` (counter-clockwise; 0 restores no-slip).
+  void spin(double speed);
+
+  // Drag and lift coefficients and dp = p(front) - p(back) of the current field.
+  void measure(CylinderResult& r) const;
+  // Recirculation length behind the cylinder (m); 0 if u does not change sign.
+  double recirculation_length() const;
+
+ private:
+  double wall_pressure_at(const std::vector<double>& pw, double angle) const;
+
+  mesher::CylinderChannelSpec spec_;
+  mesher::Grid grid_;
+  std::unique_ptr<fv::Mesh> mesh_;
+  std::unique_ptr<fv::Pimple> flow_;
+  std::vector<WallStencil> cylinder_;
+  double Um_;
+};
+
+void Channel::spin(double speed) {
+  const auto cyl = static_cast<std::size_t>(fv::patch_index(*mesh_, "cylinder"));
+  for (int i = 0; i < grid_.patches[cyl].size; ++i) {
+    const Eigen::Vector3d r =
+        mesh_->face_centre(grid_.patches[cyl].start + i) - Eigen::Vector3d(spec_.cx, spec_.cy, 0);
+    const Eigen::Vector3d u = speed / spec_.radius * Eigen::Vector3d(-r.y(), r.x(), 0);
+    for (std::size_t k = 0; k < 3; ++k)
+      flow_->U.c[k].bcs[cyl].value[static_cast<std::size_t>(i)] = u[static_cast<Eigen::Index>(k)];
+  }
+  flow_->U.update_boundary(*mesh_);
+}
+
+void Channel::measure(CylinderResult& r) const {
+  const auto& p = flow_->p;
+  const auto& U = flow_->U;
+  const auto gp = fv::grad(*mesh_, p);
+  const std::array<std::vector<Eigen::Vector3d>, 3> gU{
+      fv::grad(*mesh_, U.c[0]), fv::grad(*mesh_, U.c[1]), fv::grad(*mesh_, U.c[2])};
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();
+  std::vector<double> pw;
+  for (const auto& w : cylinder_) {
+    const double pf =
+        wall_extrapolation(w, on_normal(p.cells, gp, w.P, w.tP), on_normal(p.cells, gp, w.Q, w.tQ));
+    pw.push_back(pf);
+    Eigen::Vector3d dudn;
+    for (std::size_t k = 0; k < 3; ++k)
+      dudn[static_cast<Eigen::Index>(k)] =
+          wall_derivative(w, 0.0, on_normal(U.c[k].cells, gU[k], w.P, w.tP),
+                          on_normal(U.c[k].cells, gU[k], w.Q, w.tQ));
+    const Eigen::Vector3d& S = mesh_->area(w.face);
+    force += pf * S + flow_->settings().nu * dudn * S.norm();
+  }
+  force /= spec_.thickness;
+  const double D = 2 * spec_.radius, q = 0.5 * ubar() * ubar() * D;
+  r.cd = force.x() / q;
+  r.cl = force.y() / q;
+  r.dp = wall_pressure_at(pw, std::numbers::pi) - wall_pressure_at(pw, 0.0);
+}
+
+// Wall pressure at a polar angle of the cylinder, linear in angle between the two nearest face
+// centres (the reference points (0.15, 0.2) and (0.25, 0.2) lie on the cylinder).
+double Channel::wall_pressure_at(const std::vector<double>& pw, double angle) const {
+  auto polar = [&](const WallStencil& w) {
+    const Eigen::Vector3d& x = mesh_->face_centre(w.face);
+    double a = std::atan2(x.y() - spec_.cy, x.x() - spec_.cx) - angle;
+    return std::remainder(a, 2 * std::numbers::pi);  // signed offset in (-pi, pi]
+  };
+  std::size_t below = 0, above = 0;
+  double a_below = -1e9, a_above = 1e9;
+  for (std::size_t i = 0; i < cylinder_.size(); ++i) {
+    const double a = polar(cylinder_[i]);
+    if (a <= 0 && a > a_below) {
+      a_below = a;
+      below = i;
+    }
+    if (a > 0 && a < a_above) {
+      a_above = a;
+      above = i;
+    }
+  }
+  const double t = -a_below / (a_above - a_below);
+  return (1 - t) * pw[below] + t * pw[above];
+}
+
 // Value of a cell field at x: nearest cell centre plus its gradient (second order in smooth
 // regions; the sampled points lie inside the fluid).
 double sample(const fv::Mesh& mesh, const fv::ScalarField& f,
@@ -34,17 +155,28 @@ double sample(const fv::Mesh& mesh, const fv::ScalarField& f,
   const auto b = static_cast<std::size_t>(best);
   return f.cells[b] + grad[b].dot(x - mesh.centre(best));
 }
+
+// First sign change of u on y = cy behind the cylinder, interpolated linearly between samples
+// 0.5 mm apart.
+double Channel::recirculation_length() const {
+  const auto& u = flow_->U.c[0];
+  const auto gu = fv::grad(*mesh_, u);
+  const double z = 0.5 * spec_.thickness, x0 = spec_.cx + spec_.radius;
+  double x_prev = x0, u_prev = 0;
+  for (double x = x0 + 5e-4; x < x0 + 0.5; x += 5e-4) {
+    const double ux = sample(*mesh_, u, gu, {x, spec_.cy, z});
+    if (ux > 0 && u_prev <= 0 && x_prev > x0) {
+      return x_prev + (x - x_prev) * (-u_prev) / (ux - u_prev) - x0;
+    }
+    x_prev = x;
+    u_prev = ux;
+  }
+  return 0;
+}
 }  // namespace
 
 CylinderResult schaefer_turek_2d1(int cells_per_side, double dt) {
   const auto t_start = std::chrono::steady_clock::now();
-  mesher::CylinderChannelSpec spec;
-  spec.cells_per_side = cells_per_side;
-  spec.radial_cells = cells_per_side;
-  spec.downstream_cells = 2 * cells_per_side;
-  const auto grid = mesher::cylinder_channel(spec);
-  const fv::Mesh mesh(grid);
-  const double Um = 0.3, H = spec.height, D = 2 * spec.radius, Ubar = 2 * Um / 3;
   fv::PimpleSettings s;
   s.nu = 1e-3;
   s.dt = dt;
@@ -52,19 +184,10 @@ CylinderResult schaefer_turek_2d1(int cells_per_side, double dt) {
   s.bdf2 = false;
   s.pressure_correctors = 2;
   s.max_courant = 1e3;
-  fv::Pimple flow(mesh, s);
-  flow.U.fix(mesh, "walls", {0, 0, 0});
-  flow.U.fix(mesh, "cylinder", {0, 0, 0});
-  flow.U.fix(mesh, "inlet", {0, 0, 0});
-  const auto inlet = static_cast<std::size_t>(fv::patch_index(mesh, "inlet"));
-  for (int i = 0; i < grid.patches[inlet].size; ++i) {
-    const double y = mesh.face_centre(grid.patches[inlet].start + i).y();
-    flow.U.c[0].bcs[inlet].value[static_cast<std::size_t>(i)] = 4 * Um * y * (H - y) / (H * H);
-  }
-  flow.p.fix(mesh, "outlet", 0.0);
-  flow.initialise();
+  Channel ch(cells_per_side, 0.3, s);
+  auto& flow = ch.flow();
   CylinderResult r;
-  r.cells = mesh.cells();
+  r.cells = ch.mesh().cells();
   for (r.steps = 1; r.steps <= 20000; ++r.steps) {
     const auto before = flow.U.c[0].cells;
     flow.step();
@@ -74,47 +197,87 @@ CylinderResult schaefer_turek_2d1(int cells_per_side, double dt) {
     r.final_change = change / s.dt;
     if (r.final_change < 1e-6) break;
   }
-  // Forces on the cylinder per unit depth.
-  const auto& cyl = grid.patches[static_cast<std::size_t>(fv::patch_index(mesh, "cylinder"))];
-  Eigen::Vector3d force = Eigen::Vector3d::Zero();
-  const auto gp = fv::grad(mesh, flow.p);
-  const std::array<std::vector<Eigen::Vector3d>, 3> gU{
-      fv::grad(mesh, flow.U.c[0]), fv::grad(mesh, flow.U.c[1]), fv::grad(mesh, flow.U.c[2])};
-  for (int i = 0; i < cyl.size; ++i) {
-    const int f = cyl.start + i;
-    const int P = mesh.owner(f);
-    const Eigen::Vector3d& S = mesh.area(f);
-    const double pf = flow.p.cells[static_cast<std::size_t>(P)] +
-                      gp[static_cast<std::size_t>(P)].dot(mesh.face_centre(f) - mesh.centre(P));
-    // Wall-normal derivative of U to second order: a parabola through the wall value (0), the
-    // cell value and the cell's normal gradient, dU/dn_wall = 2 U_P / dn - dU/dn_P.
-    const double dn = S.dot(mesh.d(f)) / S.norm();
-    const Eigen::Vector3d n_fluid = -S.normalized();
-    Eigen::Vector3d dudn_P;
-    for (std::size_t k = 0; k < 3; ++k)
-      dudn_P[static_cast<Eigen::Index>(k)] = gU[k][static_cast<std::size_t>(P)].dot(n_fluid);
-    const Eigen::Vector3d dudn_wall = 2 * flow.U.cell(P) / dn - dudn_P;
-    force += pf * S + s.nu * dudn_wall * S.norm();
+  ch.measure(r);
+  r.la = ch.recirculation_length();
+  r.seconds = seconds_since(t_start);
+  return r;
+}
+
+namespace {
+// Times at which x(t) - mean crosses zero upwards, interpolated linearly between samples.
+std::vector<double> upward_crossings(const std::vector<double>& t, const std::vector<double>& x) {
+  double mean = 0;
+  for (double v : x) mean += v / static_cast<double>(x.size());
+  std::vector<double> out;
+  for (std::size_t i = 1; i < x.size(); ++i) {
+    const double a = x[i - 1] - mean, b = x[i] - mean;
+    if (a < 0 && b >= 0) out.push_back(t[i - 1] + (t[i] - t[i - 1]) * (-a) / (b - a));
   }
-  force /= spec.thickness;
-  r.cd = 2 * force.x() / (Ubar * Ubar * D);
-  r.cl = 2 * force.y() / (Ubar * Ubar * D);
-  const double z = 0.5 * spec.thickness;
-  r.dp = sample(mesh, flow.p, gp, {spec.cx - spec.radius, spec.cy, z}) -
-         sample(mesh, flow.p, gp, {spec.cx + spec.radius, spec.cy, z});
-  // Recirculation length: first sign change of u on y = cy behind the cylinder.
-  const auto gu = fv::grad(mesh, flow.U.c[0]);
-  double x_prev = spec.cx + spec.radius, u_prev = 0;
-  for (double x = x_prev + 1e-3; x < 0.6; x += 1e-3) {
-    const double u = sample(mesh, flow.U.c[0], gu, {x, spec.cy, z});
-    if (u > 0 && u_prev <= 0 && x_prev > spec.cx + spec.radius) {
-      r.la = x_prev + (x - x_prev) * (-u_prev) / (u - u_prev) - (spec.cx + spec.radius);
-      break;
+  return out;
+}
+
+// Maximum of sampled x, refined by the parabola through the largest sample and its neighbours
+// (the sampling error of a peak is O(dt^2) otherwise).
+double peak(const std::vector<double>& x) {
+  const auto it = std::max_element(x.begin() + 1, x.end() - 1);
+  const double a = *(it - 1), b = *it, c = *(it + 1);
+  const double den = a - 2 * b + c;
+  return den < 0 ? b - (c - a) * (c - a) / (8 * den) : b;
+}
+}  // namespace
+
+SheddingResult schaefer_turek_2d2(int cells_per_side, double dt, double end_time,
+                                  int measured_periods) {
+  const auto t_start = std::chrono::steady_clock::now();
+  fv::PimpleSettings s;
+  s.nu = 1e-3;
+  s.dt = dt;
+  s.non_orthogonal_correctors = 1;
+  s.bdf2 = true;
+  s.outer_iterations = 2;
+  s.pressure_correctors = 2;
+  s.max_courant = 20;
+  Channel ch(cells_per_side, 1.5, s);
+  auto& flow = ch.flow();
+  SheddingResult r;
+  r.cells = ch.mesh().cells();
+  std::vector<double> t, cd, cl;
+  // Shedding grows from round-off and the channel's asymmetry over seconds; a short spin of
+  // the cylinder (surface speed Ubar / 2 for the first 0.2 s) starts it at once.
+  const double kick = 0.2;
+  ch.spin(0.5 * ch.ubar());
+  while (flow.time() < end_time - 0.5 * dt) {
+    if (flow.time() >= kick && flow.time() < kick + dt) ch.spin(0.0);
+    const auto rep = flow.step();
+    r.max_courant = std::max(r.max_courant, rep.max_courant);
+    CylinderResult c;
+    ch.measure(c);
+    t.push_back(flow.time());
+    cd.push_back(c.cd);
+    cl.push_back(c.cl);
+  }
+  r.steps = static_cast<int>(t.size());
+  // The last `measured_periods` whole periods of cL.
+  const auto up = upward_crossings(t, cl);
+  r.seconds = seconds_since(t_start);
+  if (static_cast<int>(up.size()) < measured_periods + 2) return r;  // no (settled) shedding
+  const double t0 = up[up.size() - 1 - static_cast<std::size_t>(measured_periods)];
+  const double t1 = up.back();
+  r.periods = measured_periods;
+  const double period = (t1 - t0) / measured_periods;
+  r.strouhal = 2 * 0.05 / (period * ch.ubar());
+  // The previous window of equal length: how settled the period is.
+  const double tp = up[up.size() - 2 - static_cast<std::size_t>(measured_periods)];
+  r.period_drift = std::abs((t1 - t0) - (up[up.size() - 2] - tp)) / (t1 - t0);
+  std::vector<double> wd, wl;
+  for (std::size_t i = 0; i < t.size(); ++i)
+    if (t[i] >= t0 && t[i] <= t1) {
+      wd.push_back(cd[i]);
+      wl.push_back(cl[i]);
     }
-    x_prev = x;
-    u_prev = u;
-  }
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+  r.cd_max = peak(wd);
+  r.cl_max = peak(wl);
+  r.shedding_onset = up.front();
   return r;
 }
 

@@ -69,10 +69,9 @@ struct TaylorGreenRun {
 TaylorGreenRun taylor_green(int n, int steps, double end_time, double nu);
 double l2_difference(const TaylorGreenRun& a, const TaylorGreenRun& b);
 
-// Schaefer-Turek 2D-1 (steady, Re = 20) on the cylinder O-grid with `cells_per_side` cells per
-// side of the O-grid's rectangle (as many radially, twice as many downstream), pseudo-time step
-// dt (0.004 s ran stably up to 32 cells per side). Experimental: not yet within the reference
-// intervals, so not among cases() (docs/cfd.md, "Schaefer-Turek: open").
+// Schaefer-Turek 2D-1 (steady, Re = 20) on the cylinder grid with `cells_per_side` cells per
+// side of the O-grid's square box (half as many radially, twice as many downstream), pseudo-time
+// step dt (0.008 s runs up to m = 32; m = 48 needs less).
 struct CylinderResult {
   int cells = 0, steps = 0;
   double final_change = 0;
@@ -80,5 +79,19 @@ struct CylinderResult {
   double seconds = 0;
 };
 CylinderResult schaefer_turek_2d1(int cells_per_side, double dt);
+
+// Schaefer-Turek 2D-2 (Re = 100, periodic shedding) from rest to end_time with BDF2 at fixed dt;
+// St, cD max and cL max over the last `measured_periods` periods of cL (upward crossings of its
+// mean). periods = 0 when fewer than measured_periods + 2 periods developed (no shedding).
+struct SheddingResult {
+  int cells = 0, steps = 0, periods = 0;
+  double strouhal = 0, cd_max = 0, cl_max = 0;
+  double period_drift = 0;    // relative change of the window's length from the previous window
+  double shedding_onset = 0;  // time of the first upward crossing of cL (s)
+  double max_courant = 0;
+  double seconds = 0;
+};
+SheddingResult schaefer_turek_2d2(int cells_per_side, double dt, double end_time,
+                                  int measured_periods);
 
 }  // namespace auvloop::engine::validation

@@ -1,9 +1,12 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Body-fitted grid of a circular cylinder in a 2D channel (one cell thick, empty sides), as the
-// Schaefer-Turek DFG benchmark needs: an O-grid from the cylinder to a rectangle spanning the
-// channel height around it (four blocks, radial lines straight, cells graded towards the wall),
-// and a Cartesian block from that rectangle to the outlet. Patches: inlet (x = x0), outlet
-// (x = x1), walls (channel bottom and top), cylinder, front and back (empty).
+// Schaefer-Turek DFG benchmark needs: an O-grid from the cylinder to a square box around it (four
+// blocks, radial lines straight, cells graded towards the wall), Cartesian blocks from the box to
+// the channel's inlet and walls with about the box side's spacing, and a Cartesian block from the
+// box to the outlet. The O-grid's corners (where its lines kink) lie inside the flow, not on the
+// channel's walls: there its cells would be 45-degree rhombi with non-orthogonal wall faces.
+// Patches: inlet (x = 0), outlet (x = length), walls (channel bottom and top), cylinder, front and
+// back (empty).
 #pragma once
 
 #include <array>
@@ -20,11 +23,11 @@ struct CylinderChannelSpec {
   double height = 0.41;
   double cx = 0.2, cy = 0.2;  // cylinder centre
   double radius = 0.05;
-  double box_half_width = 0.2;  // the O-grid's rectangle spans cx -/+ this in x
-  int cells_per_side = 32;      // cells along each side of the rectangle (4 x around the cylinder)
-  int radial_cells = 32;        // from the cylinder to the rectangle
-  double radial_ratio = 8.0;    // outermost / innermost radial cell size
-  int downstream_cells = 80;    // from the rectangle to the outlet
+  double box_half_width = 0.1;    // the O-grid's square box spans c -/+ this in x and y
+  int cells_per_side = 32;        // cells along each side of the box (4 x around the cylinder)
+  int radial_cells = 16;          // from the cylinder to the box
+  double radial_ratio = 4.0;      // outermost / innermost radial cell size
+  int downstream_cells = 80;      // from the rectangle to the outlet
   double downstream_ratio = 6.0;  // last / first cell size downstream
   double thickness = 0.01;        // z extent of the one-cell-thick grid
 };
