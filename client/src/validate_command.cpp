@@ -2,6 +2,7 @@
 // `auvloop validate [NAME...] [--quick] [--json] [--list]`: runs the CFD engine's verification and
 // validation cases (engine/validation.hpp) and prints, per case, quantity, auvloop's value, the
 // reference, the error, the tolerance and pass/fail. Exit 0 only when every row passes.
+#include <algorithm>
 #include <chrono>
 #include <iostream>
 
@@ -54,7 +55,9 @@ void print_table(const validation::Result& r, double seconds) {
 int run_validate(const ValidateOptions& o) {
   const auto& all = validation::cases();
   if (o.list) {
-    for (const auto& c : all) fmt::print("{:<16} {}\n", c.name, c.description);
+    std::size_t width = 0;
+    for (const auto& c : all) width = std::max(width, c.name.size());
+    for (const auto& c : all) fmt::print("{:<{}}  {}\n", c.name, width, c.description);
     return kOk;
   }
   std::vector<const validation::Case*> chosen;
