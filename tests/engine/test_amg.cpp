@@ -14,20 +14,13 @@
 #include "auvloop/geometry/vehicle.hpp"
 #include "auvloop/mesher/generators.hpp"
 #include "auvloop/mesher/hull_grid.hpp"
+#include "sheared_box.hpp"
 
 using namespace auvloop;
 namespace fv = engine::fv;
+using test::sheared_box;
 
 namespace {
-mesher::Grid sheared_box(int n) {
-  auto g = mesher::cartesian_box(mesher::graded_nodes(0, 1, n, 1.3), mesher::graded_nodes(0, 1, n),
-                                 mesher::graded_nodes(0, 1, n, 0.8), {}, "sheared");
-  for (auto& p : g.points) {
-    p.x() += 0.1 * std::sin(std::numbers::pi * p.x()) * p.y();
-    p.y() += 0.08 * std::sin(std::numbers::pi * p.y()) * p.z();
-  }
-  return g;
-}
 
 // The Laplacian with phi = 0 on every boundary (dirichlet) or zero gradient everywhere and the
 // value of cell 0 pinned as the pressure equation does (otherwise); a smooth right-hand side.

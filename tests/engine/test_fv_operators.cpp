@@ -8,21 +8,13 @@
 #include "auvloop/engine/fv/linear_solver.hpp"
 #include "auvloop/engine/fv/operators.hpp"
 #include "auvloop/mesher/generators.hpp"
+#include "sheared_box.hpp"
 
 using namespace auvloop;
 namespace fv = engine::fv;
+using test::sheared_box;
 
 namespace {
-// Stretched box whose interior points are moved by a smooth shear: non-orthogonal everywhere.
-mesher::Grid sheared_box(int n) {
-  auto g = mesher::cartesian_box(mesher::graded_nodes(0, 1, n, 1.3), mesher::graded_nodes(0, 1, n),
-                                 mesher::graded_nodes(0, 1, n, 0.8), {}, "sheared");
-  for (auto& p : g.points) {
-    p.x() += 0.1 * std::sin(std::numbers::pi * p.x()) * p.y();
-    p.y() += 0.08 * std::sin(std::numbers::pi * p.y()) * p.z();
-  }
-  return g;
-}
 
 double residual_max(const fv::Mesh& mesh, const fv::Matrix& m, const std::vector<double>& x) {
   std::vector<double> ax(x.size());

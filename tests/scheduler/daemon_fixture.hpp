@@ -170,6 +170,13 @@ class Daemon {
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
   }
+  // Polls a job until a worker runs it (at most 5 s); returns its last state.
+  v1::State wait_running(const std::string& id) {
+    for (int i = 0; i < 500 && job(id).state() != v1::RUNNING; ++i) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return job(id).state();
+  }
   v1::Job wait_job(const std::string& id, double timeout_s = 120) {
     return wait_until_finished([&] { return job(id); }, timeout_s);
   }

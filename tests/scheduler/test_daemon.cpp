@@ -137,9 +137,7 @@ TEST(Daemon, CancelStopsARunningJob) {
   Daemon d({"--no-plots"}, {{"AUVLOOP_WORKER_FAILPOINT", "hang:sleeper"}});
   d.start();
   const auto job = d.submit(heading_case("sleeper"));
-  for (int i = 0; i < 500 && d.job(job.id()).state() != v1::RUNNING; ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
+  ASSERT_EQ(d.wait_running(job.id()), v1::RUNNING);
   v1::IdRequest req;
   req.set_id(job.id());
   v1::CancelResponse resp;
@@ -155,10 +153,7 @@ TEST(Daemon, CancelSurvivesAKillRightAfterTheReply) {
   Daemon d({"--no-plots"}, {{"AUVLOOP_WORKER_FAILPOINT", "hang:sleeper"}});
   d.start();
   const auto job = d.submit(heading_case("sleeper"));
-  for (int i = 0; i < 500 && d.job(job.id()).state() != v1::RUNNING; ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
-  ASSERT_EQ(d.job(job.id()).state(), v1::RUNNING);
+  ASSERT_EQ(d.wait_running(job.id()), v1::RUNNING);
   v1::IdRequest req;
   req.set_id(job.id());
   v1::CancelResponse resp;
@@ -179,9 +174,7 @@ TEST(Daemon, DrainingStopRecordsTheRunningJobAndExits) {
   Daemon d({"--no-plots"}, {{"AUVLOOP_WORKER_FAILPOINT", "hang:slow"}});
   d.start();
   const auto job = d.submit(heading_case("slow"), 1.0);  // ends by its 1 s timeout
-  for (int i = 0; i < 500 && d.job(job.id()).state() != v1::RUNNING; ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
+  d.wait_running(job.id());
   v1::ShutdownRequest req;
   req.set_drain(true);
   v1::ShutdownResponse resp;
