@@ -49,10 +49,12 @@ Matrix div(const Mesh& mesh, std::span<const double> flux, const ScalarField& ph
     if (scheme == Convection::upwind) continue;
     const bool fromP = F >= 0;
     const auto C = fromP ? P : N, D = fromP ? N : P;
+    // Centres in the owner's frame (a periodic neighbour is seen at its image).
+    const Eigen::Vector3d& xP = mesh.centre(static_cast<int>(P));
+    const Eigen::Vector3d xN = mesh.neighbour_centre(f);
     const double correction =
-        F * (high_order(mesh, scheme, f, v[C], v[D], g[C], mesh.centre(static_cast<int>(C)),
-                        mesh.centre(static_cast<int>(D))) -
-             v[C]);
+        F *
+        (high_order(mesh, scheme, f, v[C], v[D], g[C], fromP ? xP : xN, fromP ? xN : xP) - v[C]);
     m.source[P] -= correction;
     m.source[N] += correction;
   }

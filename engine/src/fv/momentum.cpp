@@ -16,6 +16,11 @@ Pimple::Momentum Pimple::assemble_momentum(bool final) {
     m.eq[i] = ddt(mesh_, ts, U_old_[0][i], U_old_[1][i]) +
               div(mesh_, phi, U.c[i], settings_.convection) -
               laplacian(mesh_, settings_.nu, U.c[i]);
+    if (!body_force.empty()) {
+      std::vector<double> f(body_force.size());
+      for (std::size_t c = 0; c < f.size(); ++c) f[c] = body_force[c][static_cast<Eigen::Index>(i)];
+      m.eq[i].add_rhs(mesh_, f);
+    }
     if (!final && settings_.relax_u < 1) m.eq[i].relax(U.c[i].cells, settings_.relax_u);
   }
   return m;

@@ -10,6 +10,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
 
 #include <fmt/format.h>
 
@@ -95,6 +96,9 @@ void Pimple::initialise() {
 }
 
 StepReport Pimple::step() {
+  if (!body_force.empty() && body_force.size() != static_cast<std::size_t>(mesh_.cells()))
+    throw std::invalid_argument(fmt::format("Pimple: body_force has {} entries for {} cells",
+                                            body_force.size(), mesh_.cells()));
   const VectorField U_good = U;
   const ScalarField p_good = p;
   const auto phi_good = phi;
@@ -105,6 +109,7 @@ StepReport Pimple::step() {
   phi_old_[1] = phi_old_[0];
   phi_old_[0] = phi;
   StepReport r;
+  const double gradient_seconds = mesh_.gradient_seconds();
   r.step = steps_ + 1;
   r.time = time_ + settings_.dt;
   try {
@@ -113,6 +118,7 @@ StepReport Pimple::step() {
       auto t0 = std::chrono::steady_clock::now();
       apply_slip();
       Momentum m = assemble_momentum(final);
+      r.seconds_assembly += seconds_since(t0);
       solve_momentum(m, r, outer == 1);
       r.seconds_momentum += seconds_since(t0);
       t0 = std::chrono::steady_clock::now();
@@ -131,6 +137,7 @@ StepReport Pimple::step() {
       r.continuity_error += std::abs(d[static_cast<std::size_t>(c)]) * mesh_.volume(c);
     r.continuity_error *= settings_.dt / mesh_.total_volume();
     r.seconds_other = seconds_since(t0);
+    r.seconds_gradient = mesh_.gradient_seconds() - gradient_seconds;
     check(r);
   } catch (const std::exception& e) {
     U = U_good;

@@ -48,6 +48,9 @@ struct StepReport {
   int outer_iterations = 0;
   int pressure_iterations = 0;  // Krylov iterations summed over correctors (0 for CHOLMOD)
   double seconds_momentum = 0, seconds_pressure = 0, seconds_other = 0;
+  // Parts of the above: momentum assembly (in seconds_momentum) and every cell-gradient
+  // evaluation (deferred corrections, grad p; spread over all three).
+  double seconds_assembly = 0, seconds_gradient = 0;
 };
 
 // Thrown when a step diverges (NaN, Courant number beyond the limit); the solver's fields are
@@ -63,6 +66,10 @@ class Pimple {
   VectorField U;
   ScalarField p;
   std::vector<double> phi;  // volume flux through each face (m^3/s, out of the owner)
+  // Body force per unit mass in each cell (m/s^2; empty: none), e.g. the mean pressure gradient
+  // that drives a periodic channel or an actuator disk's thrust. An explicit momentum source,
+  // so it also enters H(U) and the Rhie-Chow flux, as in OpenFOAM's fvOptions.
+  std::vector<Eigen::Vector3d> body_force;
 
   // Marks a patch as slip (symmetry): zero normal velocity, zero tangential stress (lagged by
   // one outer iteration through the boundary values).
