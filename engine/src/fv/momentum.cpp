@@ -9,7 +9,7 @@
 namespace auvloop::engine::fv {
 
 Pimple::Momentum Pimple::assemble_momentum(bool final) {
-  const TimeScheme ts{settings_.dt, settings_.bdf2 && steps_ > 0};
+  const TimeScheme ts = time_scheme();
   Momentum m;
   for (std::size_t i = 0; i < 3; ++i) {
     if (!active_[i]) continue;
