@@ -1,17 +1,34 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "dic_pcg.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "parallel.hpp"
+
 namespace auvloop::engine::fv {
 
 namespace {
+constexpr int kBlock = 4096;  // rows per partial sum: fixed, independent of the thread count
+
+// Sum of a[i] b[i] in fixed blocks, summed in block order: deterministic for any thread count.
 double dot(const std::vector<double>& a, const std::vector<double>& b) {
+  const int n = static_cast<int>(a.size());
+  std::vector<double> partial(static_cast<std::size_t>((n + kBlock - 1) / kBlock));
+  parallel_for(
+      static_cast<int>(partial.size()),
+      [&](int k) {
+        double s = 0;
+        for (int i = k * kBlock; i < std::min(n, (k + 1) * kBlock); ++i)
+          s += a[static_cast<std::size_t>(i)] * b[static_cast<std::size_t>(i)];
+        partial[static_cast<std::size_t>(k)] = s;
+      },
+      1);
   double s = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) s += a[i] * b[i];
+  for (double p : partial) s += p;
   return s;
 }
 
@@ -56,17 +73,21 @@ int dic_pcg(const Mesh& mesh, const Matrix& A, std::span<double> x, double toler
   for (int it = 1; it <= max_iterations; ++it) {
     A.multiply(mesh, p, Ap);
     const double alpha = rw / dot(p, Ap);
-    for (std::size_t i = 0; i < n; ++i) {
+    parallel_for(static_cast<int>(n), [&](int k) {
+      const auto i = static_cast<std::size_t>(k);
       x[i] += alpha * p[i];
       r[i] -= alpha * Ap[i];
-    }
+    });
     rnorm = std::sqrt(dot(r, r));
     if (rnorm <= tolerance * bnorm) return it;
     precondition(mesh, A, rD, r, w);
     const double rw_new = dot(r, w);
     const double beta = rw_new / rw;
     rw = rw_new;
-    for (std::size_t i = 0; i < n; ++i) p[i] = w[i] + beta * p[i];
+    parallel_for(static_cast<int>(n), [&](int k) {
+      const auto i = static_cast<std::size_t>(k);
+      p[i] = w[i] + beta * p[i];
+    });
   }
   throw std::runtime_error("DIC-CG did not converge in " + std::to_string(max_iterations) +
                            " iterations: relative residual " + std::to_string(rnorm / bnorm));
