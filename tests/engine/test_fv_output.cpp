@@ -67,6 +67,19 @@ TEST(FvProbes, SecondOrderForASmoothField) {
   EXPECT_GT(std::log2(e16 / e32), 1.8);
 }
 
+TEST(FvProbes, FindTheirCellsBesidePeriodicPatches) {
+  // The cells next to x+ see their coupled face at x = 1 although it is stored at x = 0.
+  mesher::BoxPatches patches;
+  patches.types[0] = patches.types[1] = mesher::PatchType::periodic;
+  const auto grid =
+      mesher::cartesian_box(mesher::graded_nodes(0, 1, 4), mesher::graded_nodes(0, 1, 4),
+                            mesher::graded_nodes(0, 1, 4), patches, "periodic");
+  const fv::Mesh mesh(grid);
+  const fv::Probes probes(mesh, {{0.9, 0.3, 0.6}, {0.1, 0.3, 0.6}});
+  EXPECT_EQ(mesh.centre(probes.cells()[0]).x(), 0.875);
+  EXPECT_EQ(mesh.centre(probes.cells()[1]).x(), 0.125);
+}
+
 TEST(FvProbes, PointOutsideTheGridIsNamed) {
   const auto grid = box(4);
   const fv::Mesh mesh(grid);

@@ -18,8 +18,12 @@ bool inside(const Mesh& mesh, int c, const Eigen::Vector3d& x) {
   const double tol = 1e-10 * std::cbrt(mesh.volume(c));
   for (int f : mesh.cell_faces(c)) {
     const Eigen::Vector3d n = mesh.area(f).normalized();
-    const double outward = mesh.owner(f) == c ? 1.0 : -1.0;
-    if (outward * n.dot(x - mesh.face_centre(f)) > tol) return false;
+    const bool owner = mesh.owner(f) == c;
+    // A periodic face lies on the owner's side; the neighbour sees it shifted by its image.
+    const Eigen::Vector3d xf =
+        owner ? mesh.face_centre(f)
+              : Eigen::Vector3d(mesh.face_centre(f) - (mesh.neighbour_centre(f) - mesh.centre(c)));
+    if ((owner ? 1.0 : -1.0) * n.dot(x - xf) > tol) return false;
   }
   return true;
 }

@@ -98,8 +98,7 @@ std::uint64_t key(int a, int b) {
 
 // The coupled faces of one pair of patches (a: the lower patch index), appended to `faces`.
 void couple_pair(const Grid& g, const GridGeometry& geo, const Patch& a, const Patch& b,
-                 const std::unordered_set<std::uint64_t>& existing,
-                 std::vector<InternalFace>& faces) {
+                 std::unordered_set<std::uint64_t>& existing, std::vector<InternalFace>& faces) {
   const Eigen::Vector3d s = mean_centre(a, geo) - mean_centre(b, geo);
   const auto match = match_faces(geo, a, b, s);
   for (int i = 0; i < b.size; ++i) {
@@ -111,6 +110,7 @@ void couple_pair(const Grid& g, const GridGeometry& geo, const Patch& a, const P
           "periodic patches '{}' and '{}' of grid '{}': cells {} and {} would be coupled twice; a "
           "periodic direction needs at least three cells",
           a.name, b.name, g.name, Pa, Pb));
+    existing.insert(key(std::min(Pa, Pb), std::max(Pa, Pb)));
     // The cell behind b is seen through a at its centre + s, and vice versa.
     if (Pa < Pb)
       faces.push_back({Pa, Pb, fa, s});
