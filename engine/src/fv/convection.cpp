@@ -32,8 +32,8 @@ double high_order(const Mesh& mesh, Convection scheme, int f, double phiC, doubl
 }
 }  // namespace
 
-// Two parallel passes as in laplacian(): per face, then per cell in Mesh::cell_faces order, so
-// the sums are those of a serial face loop whatever the number of threads.
+// Two passes as in laplacian(): per face in parallel, then accumulate_faces, so the sums are
+// those of a serial face loop whatever the number of threads.
 Matrix div(const Mesh& mesh, std::span<const double> flux, const ScalarField& phi,
            Convection scheme) {
   Matrix m(mesh);
@@ -69,24 +69,14 @@ Matrix div(const Mesh& mesh, std::span<const double> flux, const ScalarField& ph
         F *
         (high_order(mesh, scheme, f, v[C], v[D], g[C], fromP ? xP : xN, fromP ? xN : xP) - v[C]);
   });
-  parallel_for(mesh.cells(), [&](int cell) {
-    double diag = 0, source = 0;
-    for (int f : mesh.cell_faces(cell)) {
-      const auto fs = static_cast<std::size_t>(f);
-      const double F = flux[fs];
-      if (f >= internal) {
-        diag += boundary_diag[static_cast<std::size_t>(f - internal)];
-        source -= correction[fs];
-      } else if (mesh.owner(f) == cell) {
-        diag += std::max(F, 0.0);
-        source -= correction[fs];
-      } else {
-        diag += std::max(-F, 0.0);
-        source += correction[fs];
-      }
-    }
-    m.diag[static_cast<std::size_t>(cell)] = diag;
-    m.source[static_cast<std::size_t>(cell)] = source;
+  accumulate_faces(mesh, m.diag, m.source, [&](int f, bool owner_side) {
+    const auto fs = static_cast<std::size_t>(f);
+    const double F = flux[fs];
+    if (f >= internal)
+      return std::array<double, 2>{boundary_diag[static_cast<std::size_t>(f - internal)],
+                                   -correction[fs]};
+    return owner_side ? std::array<double, 2>{std::max(F, 0.0), -correction[fs]}
+                      : std::array<double, 2>{std::max(-F, 0.0), correction[fs]};
   });
   return m;
 }

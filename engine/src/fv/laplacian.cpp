@@ -5,9 +5,9 @@
 
 namespace auvloop::engine::fv {
 
-// Two parallel passes: per face (coefficients and the explicit corrections), then per cell (the
-// diagonal and source gathered over Mesh::cell_faces in ascending face order: the same sums in
-// the same order as a serial face loop, so the result does not depend on the thread count).
+// Two passes: per face in parallel (coefficients and the explicit corrections), then the
+// diagonal and source summed per cell in ascending face order (accumulate_faces: a parallel
+// gather, or the face scatter on one thread), so the result does not depend on the thread count.
 Matrix laplacian(const Mesh& mesh, std::span<const double> gamma, const ScalarField& phi) {
   Matrix m(mesh);
   const auto g = grad(mesh, phi);  // for the explicit correction only
@@ -32,25 +32,14 @@ Matrix laplacian(const Mesh& mesh, std::span<const double> gamma, const ScalarFi
     boundary_diag[static_cast<std::size_t>(b)] = c * (a - 1);
     correction[fs] = c * v + gamma[fs] * mesh.k(f).dot(g[P]);
   });
-  parallel_for(mesh.cells(), [&](int cell) {
-    double diag = 0, source = 0;
-    for (int f : mesh.cell_faces(cell)) {
-      const auto fs = static_cast<std::size_t>(f);
-      if (f >= internal) {
-        const auto b = static_cast<std::size_t>(f - internal);
-        if (boundary_diag[b] == 0.0 && correction[fs] == 0.0) continue;
-        diag += boundary_diag[b];
-        source -= correction[fs];
-      } else if (mesh.owner(f) == cell) {
-        diag -= gamma[fs] * mesh.alpha(f);
-        source -= correction[fs];  // the flux leaves the owner ...
-      } else {
-        diag -= gamma[fs] * mesh.alpha(f);
-        source += correction[fs];  // ... and enters the neighbour
-      }
-    }
-    m.diag[static_cast<std::size_t>(cell)] = diag;
-    m.source[static_cast<std::size_t>(cell)] = source;
+  accumulate_faces(mesh, m.diag, m.source, [&](int f, bool owner_side) {
+    const auto fs = static_cast<std::size_t>(f);
+    if (f >= internal)
+      return std::array<double, 2>{boundary_diag[static_cast<std::size_t>(f - internal)],
+                                   -correction[fs]};
+    // The flux leaves the owner and enters the neighbour.
+    return std::array<double, 2>{-gamma[fs] * mesh.alpha(f),
+                                 owner_side ? -correction[fs] : correction[fs]};
   });
   return m;
 }

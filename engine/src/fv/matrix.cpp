@@ -48,9 +48,20 @@ void Matrix::add_rhs(const Mesh& mesh, std::span<const double> per_unit_volume) 
 }
 
 // Per-cell gathers in Mesh::cell_faces order (ascending face index): the same sums in the same
-// order as a serial face loop, in parallel and independent of the number of threads.
+// order as the serial face scatter, in parallel. The gather visits every face twice with indirect
+// reads (measured 1.8 times the scatter's time on one thread, 64^3 cells), so one thread scatters.
 void Matrix::multiply(const Mesh& mesh, std::span<const double> x, std::span<double> y) const {
   const int internal = mesh.internal_faces();
+  if (single_thread()) {
+    for (std::size_t c = 0; c < diag.size(); ++c) y[c] = diag[c] * x[c];
+    for (int f = 0; f < internal; ++f) {
+      const auto P = static_cast<std::size_t>(mesh.owner(f));
+      const auto N = static_cast<std::size_t>(mesh.neighbour(f));
+      y[P] += upper[static_cast<std::size_t>(f)] * x[N];
+      y[N] += lower[static_cast<std::size_t>(f)] * x[P];
+    }
+    return;
+  }
   parallel_for(mesh.cells(), [&](int c) {
     const auto C = static_cast<std::size_t>(c);
     double sum = diag[C] * x[C];
@@ -66,6 +77,16 @@ void Matrix::multiply(const Mesh& mesh, std::span<const double> x, std::span<dou
 
 void Matrix::h_operator(const Mesh& mesh, std::span<const double> x, std::span<double> h) const {
   const int internal = mesh.internal_faces();
+  if (single_thread()) {
+    for (std::size_t c = 0; c < diag.size(); ++c) h[c] = source[c];
+    for (int f = 0; f < internal; ++f) {
+      const auto P = static_cast<std::size_t>(mesh.owner(f));
+      const auto N = static_cast<std::size_t>(mesh.neighbour(f));
+      h[P] -= upper[static_cast<std::size_t>(f)] * x[N];
+      h[N] -= lower[static_cast<std::size_t>(f)] * x[P];
+    }
+    return;
+  }
   parallel_for(mesh.cells(), [&](int c) {
     const auto C = static_cast<std::size_t>(c);
     double sum = source[C];
