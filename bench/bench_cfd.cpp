@@ -1,98 +1,202 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Cost of the PIMPLE solver on the 3D lid-driven cavity (unit cube, lid u = 1 m/s, Re = 100 by
-// default): microseconds per cell per time step and per outer iteration, split by phase
-// (momentum assembly and solve, pressure correctors, the rest), for a pressure solver and a
-// thread count. Not a test: nothing is asserted.
-//   bench_cfd [--n N] [--steps K] [--outer M] [--correctors C] [--pressure cholmod|cg-ic|cg-jacobi]
-//             [--threads T] [--re RE] [--co COURANT] [--2d 1]
+// Cost of the PIMPLE solver: microseconds per cell per time step and per outer iteration, split by
+// phase (momentum assembly, momentum solve, pressure correctors, the rest; gradient evaluations
+// across all of them), for a pressure solver and a thread count. Not a test: nothing is asserted.
+// Two cases:
+//   cavity  the 3D lid-driven cavity (unit cube, lid u = 1 m/s, Re = 100 by default), N^3 cells;
+//   hull    the hull grid of a mesher preset (REMUS 100, no fins, no overset): freestream
+//           -U_inf x on the upstream part of its outer boundary (U fixed, p zero gradient), p = 0
+//           and zero-gradient U on the downstream part, no-slip on the hull; sea water.
+//   bench_cfd [--case cavity|hull] [--preset coarse] [--n N] [--steps K] [--outer M]
+//             [--correctors C] [--pressure cholmod|cholmod-pcg|cg-ic|cg-dic|cg-jacobi]
+//             [--threads T] [--re RE] [--co COURANT] [--2d 1] [--time bdf2|euler]
+//             [--convection van-leer|linear-upwind|upwind]
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <map>
+#include <memory>
 #include <string>
 
 #include <tbb/global_control.h>
 
 #include "auvloop/engine/fv/pimple.hpp"
+#include "auvloop/geometry/vehicle.hpp"
 #include "auvloop/mesher/generators.hpp"
+#include "auvloop/mesher/grid_system.hpp"
+#include "auvloop/mesher/mesh_settings.hpp"
 
 using namespace auvloop;
+namespace fv = engine::fv;
 
-int main(int argc, char** argv) {
+namespace {
+struct Options {
+  std::string case_name = "cavity", preset = "coarse", pressure, time = "bdf2";
+  std::string convection = "van-leer";
   int n = 32, steps = 10, outer = 1, correctors = 2, threads = 1, two_d = 0;
   double re = 100, co = 1;
-  std::string pressure;  // empty: the solver's default for the grid
+};
+
+Options parse(int argc, char** argv) {
+  Options o;
   for (int i = 1; i + 1 < argc; i += 2) {
-    const std::string key = argv[i];
-    const char* v = argv[i + 1];
-    if (key == "--n")
-      n = std::atoi(v);
-    else if (key == "--steps")
-      steps = std::atoi(v);
-    else if (key == "--outer")
-      outer = std::atoi(v);
-    else if (key == "--correctors")
-      correctors = std::atoi(v);
-    else if (key == "--pressure")
-      pressure = v;
-    else if (key == "--threads")
-      threads = std::atoi(v);
+    const std::string key = argv[i], v = argv[i + 1];
+    std::map<std::string, std::string*> strings{{"--case", &o.case_name},
+                                                {"--preset", &o.preset},
+                                                {"--pressure", &o.pressure},
+                                                {"--time", &o.time},
+                                                {"--convection", &o.convection}};
+    std::map<std::string, int*> ints{{"--n", &o.n},
+                                     {"--steps", &o.steps},
+                                     {"--outer", &o.outer},
+                                     {"--correctors", &o.correctors},
+                                     {"--threads", &o.threads},
+                                     {"--2d", &o.two_d}};
+    if (strings.contains(key))
+      *strings[key] = v;
+    else if (ints.contains(key))
+      *ints[key] = std::atoi(v.c_str());
     else if (key == "--re")
-      re = std::atof(v);
+      o.re = std::atof(v.c_str());
     else if (key == "--co")
-      co = std::atof(v);
-    else if (key == "--2d")
-      two_d = std::atoi(v);
+      o.co = std::atof(v.c_str());
     else {
       std::fprintf(stderr, "unknown option %s\n", key.c_str());
-      return 2;
+      std::exit(2);
     }
   }
-  tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
-                            static_cast<std::size_t>(threads));
-  const auto nodes = mesher::graded_nodes(0, 1, n);
+  return o;
+}
+
+fv::Convection convection(const std::string& s) {
+  if (s == "upwind") return fv::Convection::upwind;
+  if (s == "linear-upwind") return fv::Convection::linear_upwind;
+  if (s == "van-leer") return fv::Convection::van_leer;
+  std::fprintf(stderr, "unknown convection scheme %s\n", s.c_str());
+  std::exit(2);
+}
+
+mesher::Grid cavity_grid(const Options& o) {
+  const auto nodes = mesher::graded_nodes(0, 1, o.n);
   mesher::BoxPatches patches;
   patches.names = {"left", "right", "bottom", "lid", "front", "back"};
-  if (two_d) patches.types[4] = patches.types[5] = mesher::PatchType::empty;
-  const auto grid = mesher::cartesian_box(
-      nodes, nodes, two_d ? std::vector<double>{0.0, 1.0 / n} : nodes, patches, "cavity");
-  const engine::fv::Mesh mesh(grid);
-  engine::fv::PimpleSettings s;
-  s.nu = 1.0 / re;
-  s.dt = co / n;  // Courant number `co` at the lid speed
-  s.outer_iterations = outer;
-  s.pressure_correctors = correctors;
-  if (!pressure.empty()) s.pressure_solver = engine::fv::symmetric_method_from_string(pressure);
+  if (o.two_d) patches.types[4] = patches.types[5] = mesher::PatchType::empty;
+  return mesher::cartesian_box(nodes, nodes, o.two_d ? std::vector<double>{0.0, 1.0 / o.n} : nodes,
+                               patches, "cavity");
+}
+
+// The hull grid with its outer (overset) patch split into "inflow" (faces facing the oncoming
+// stream, U_inf . S < 0) and "outflow" (the rest), as a single-grid freestream case needs.
+mesher::Grid hull_freestream_grid(const std::string& preset, const Eigen::Vector3d& u_inf) {
+  const auto vehicle = geometry::preset_vehicle("remus100");
+  const auto settings = mesher::mesh_preset(preset, vehicle);
+  const mesher::Grid hull = mesher::build_grid_system(vehicle, settings).hull;
+  mesher::Grid g = hull;
+  g.face_offsets = {0};
+  g.face_points.clear();
+  g.owner.clear();
+  g.patches.clear();
+  const auto geo = mesher::compute_geometry(hull);
+  auto copy = [&](int f) {
+    const auto fs = static_cast<std::size_t>(f);
+    g.add_face(std::vector<int>(hull.face_points.begin() + hull.face_offsets[fs],
+                                hull.face_points.begin() + hull.face_offsets[fs + 1]),
+               hull.owner[fs]);
+  };
+  for (int f = 0; f < hull.internal_faces(); ++f) copy(f);
+  for (const auto& patch : hull.patches) {
+    if (patch.type != mesher::PatchType::overset) {
+      mesher::Patch p = patch;
+      p.start = g.faces();
+      for (int i = 0; i < patch.size; ++i) copy(patch.start + i);
+      g.patches.push_back(p);
+      continue;
+    }
+    for (const bool inflow : {true, false}) {
+      mesher::Patch p{inflow ? "inflow" : "outflow",
+                      inflow ? mesher::PatchType::inlet : mesher::PatchType::outlet, g.faces(), 0};
+      for (int i = 0; i < patch.size; ++i) {
+        const int f = patch.start + i;
+        if ((u_inf.dot(geo.face_area[static_cast<std::size_t>(f)]) < 0) == inflow) copy(f);
+      }
+      p.size = g.faces() - p.start;
+      g.patches.push_back(p);
+    }
+  }
+  return g;
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Options o = parse(argc, argv);
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
+                            static_cast<std::size_t>(o.threads));
+  const bool hull = o.case_name == "hull";
+  const Eigen::Vector3d u_inf(-1.54, 0, 0);  // REMUS 100 design speed, body frame (x forward)
+  const mesher::Grid grid = hull ? hull_freestream_grid(o.preset, u_inf) : cavity_grid(o);
+  const fv::Mesh mesh(grid);
+  fv::PimpleSettings s;
+  s.nu = hull ? 1.05e-6 : 1.0 / o.re;
+  s.outer_iterations = o.outer;
+  s.pressure_correctors = o.correctors;
+  s.bdf2 = o.time == "bdf2";
+  s.convection = convection(o.convection);
+  if (!o.pressure.empty()) s.pressure_solver = fv::symmetric_method_from_string(o.pressure);
   s.tolerance = 1e-6;
-  engine::fv::Pimple flow(mesh, s);
-  pressure = engine::fv::to_string(*flow.settings().pressure_solver);
-  for (const char* wall : {"left", "right", "bottom", "front", "back"})
-    if (!two_d || wall[0] == 'l' || wall[0] == 'r' || wall[0] == 'b')
-      flow.U.fix(mesh, wall, {0, 0, 0});
-  flow.U.fix(mesh, "lid", {1, 0, 0});
+  s.max_courant = 1e9;  // a benchmark: report, do not stop
+  std::vector<double> uniform;
+  if (hull) {
+    // dt for Courant number `co` of the free stream in the smallest cell of the grid.
+    std::vector<double> flux(static_cast<std::size_t>(mesh.faces()));
+    for (int f = 0; f < mesh.faces(); ++f)
+      flux[static_cast<std::size_t>(f)] = u_inf.dot(mesh.area(f));
+    s.dt = o.co / fv::courant(mesh, flux, 1.0).first;
+  } else {
+    s.dt = o.co / o.n;  // Courant number `co` at the lid speed
+  }
+  fv::Pimple flow(mesh, s);
+  const std::string pressure = fv::to_string(*flow.settings().pressure_solver);
+  if (hull) {
+    flow.U.fix(mesh, "hull", {0, 0, 0});
+    flow.U.fix(mesh, "inflow", u_inf);
+    flow.p.fix(mesh, "outflow", 0.0);
+    for (auto& comp : flow.U.c) comp.cells.assign(comp.cells.size(), 0.0);
+    flow.U.c[0].cells.assign(flow.U.c[0].cells.size(), u_inf.x());
+  } else {
+    for (const char* wall : {"left", "right", "bottom", "front", "back"})
+      if (!o.two_d || wall[0] == 'l' || wall[0] == 'r' || wall[0] == 'b')
+        flow.U.fix(mesh, wall, {0, 0, 0});
+    flow.U.fix(mesh, "lid", {1, 0, 0});
+  }
   flow.initialise();
-  double momentum = 0, pressure_s = 0, other = 0;
+  double assembly = 0, momentum = 0, pressure_s = 0, gradient = 0, max_co = 0;
   int pressure_iterations = 0;
   const auto t0 = std::chrono::steady_clock::now();
-  for (int k = 0; k < steps; ++k) {
+  for (int k = 0; k < o.steps; ++k) {
     const auto r = flow.step();
+    assembly += r.seconds_assembly;
     momentum += r.seconds_momentum;
     pressure_s += r.seconds_pressure;
-    other += r.seconds_other;
+    gradient += r.seconds_gradient;
     pressure_iterations += r.pressure_iterations;
+    max_co = std::max(max_co, r.max_courant);
   }
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const double cells = mesh.cells();
-  const double per_step = 1e6 * total / (cells * steps);
-  std::printf("cavity%s n=%d cells=%d steps=%d outer=%d correctors=%d pressure=%s threads=%d\n",
-              two_d ? "2d" : "3d", n, mesh.cells(), steps, outer, correctors, pressure.c_str(),
-              threads);
-  std::printf("  us/cell/step %.3f   us/cell/outer %.3f   s/step %.4f\n", per_step,
-              per_step / outer, total / steps);
+  const double per_step = 1e6 * total / (cells * o.steps);
   std::printf(
-      "  phase split: momentum %.1f %%, pressure %.1f %%, other %.1f %%   "
-      "(pressure Krylov iterations per step %.1f)\n",
-      100 * momentum / total, 100 * pressure_s / total,
-      100 * (total - momentum - pressure_s) / total,
-      static_cast<double>(pressure_iterations) / steps);
+      "%s%s n=%d cells=%d steps=%d outer=%d correctors=%d pressure=%s time=%s "
+      "convection=%s threads=%d dt=%.3g max Co=%.3g\n",
+      hull ? ("hull-" + o.preset).c_str() : "cavity", hull ? "" : (o.two_d ? "2d" : "3d"),
+      hull ? 0 : o.n, mesh.cells(), o.steps, o.outer, o.correctors, pressure.c_str(),
+      o.time.c_str(), o.convection.c_str(), o.threads, s.dt, max_co);
+  std::printf("  us/cell/step %.3f   us/cell/outer %.3f   s/step %.4f\n", per_step,
+              per_step / o.outer, total / o.steps);
+  std::printf(
+      "  phase split: assembly %.1f %%, momentum solve %.1f %%, pressure %.1f %%, other %.1f %%; "
+      "gradients (within these) %.1f %%   (pressure Krylov iterations per step %.1f)\n",
+      100 * assembly / total, 100 * (momentum - assembly) / total, 100 * pressure_s / total,
+      100 * (total - momentum - pressure_s) / total, 100 * gradient / total,
+      static_cast<double>(pressure_iterations) / o.steps);
   return 0;
 }

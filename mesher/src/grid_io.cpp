@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "auvloop/mesher/grid_io.hpp"
 
+#include <stdexcept>
+
 #include <fmt/format.h>
 
 #include "auvloop/geometry/file_io.hpp"
@@ -143,7 +145,14 @@ void write_vtu(const fs::path& file, const Grid& g,
        "\n</DataArray>\n";
   s += "</Cells>\n<CellData>\n";
   for (const auto& [name, values] : cell_fields) {
-    s += fmt::format("<DataArray type=\"Float64\" Name=\"{}\" format=\"ascii\">\n", name);
+    // One value per cell, or three (a vector, x y z per cell in turn).
+    const auto cells = static_cast<std::size_t>(g.cells);
+    if (values.size() != cells && values.size() != 3 * cells)
+      throw std::invalid_argument(fmt::format("write_vtu: field '{}' has {} values for {} cells",
+                                              name, values.size(), cells));
+    s += fmt::format(
+        "<DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"{}\" format=\"ascii\">\n",
+        name, values.size() == cells ? 1 : 3);
     for (double v : values) s += fmt::format("{:.10g} ", v);
     s += "\n</DataArray>\n";
   }

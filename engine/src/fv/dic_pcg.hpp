@@ -3,7 +3,8 @@
 // private to engine/src. DIC keeps the off-diagonal coefficients and only modifies the diagonal,
 // D_N -= a_f^2 / D_P over the faces in upper-triangular order (Meijerink and van der Vorst's
 // IC(0) for matrices whose off-diagonals are those of the mesh): no storage beyond one vector,
-// and the sweeps follow the face order, so the result does not depend on the thread count.
+// and the sweeps follow the face order (serial). The matrix product, updates and dot products
+// (fixed 4096-row blocks) run in parallel; the result does not depend on the thread count.
 #pragma once
 
 #include <span>

@@ -28,6 +28,9 @@ ScalarField::ScalarField(const Mesh& mesh, std::string field_name)
 
 void ScalarField::fix(const Mesh& mesh, const std::string& patch, double v) {
   const auto p = static_cast<std::size_t>(patch_index(mesh, patch));
+  if (mesh.grid().patches[p].type == mesher::PatchType::periodic)
+    throw std::invalid_argument("patch '" + patch + "' of grid '" + mesh.grid().name +
+                                "' is periodic: its values are those of the coupled cells");
   bcs[p].kind = BcKind::fixed_value;
   bcs[p].value.assign(static_cast<std::size_t>(mesh.grid().patches[p].size), v);
 }

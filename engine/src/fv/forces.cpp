@@ -1,22 +1,61 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "auvloop/engine/fv/forces.hpp"
 
+#include <array>
+
 namespace auvloop::engine::fv {
 
-PatchForce patch_force(const Pimple& flow, const std::string& patch) {
+PatchForce& PatchForce::operator+=(const PatchForce& o) {
+  pressure += o.pressure;
+  viscous += o.viscous;
+  pressure_moment += o.pressure_moment;
+  viscous_moment += o.viscous_moment;
+  return *this;
+}
+
+PatchForce patch_force(const Pimple& flow, const std::string& patch,
+                       const Eigen::Vector3d& moment_point) {
   const Mesh& mesh = flow.mesh();
   const auto& p = mesh.grid().patches[static_cast<std::size_t>(patch_index(mesh, patch))];
+  // Cell gradients of the velocity components, for the transposed part of the stress.
+  const std::array<std::vector<Eigen::Vector3d>, 3> g{
+      grad(mesh, flow.U.c[0]), grad(mesh, flow.U.c[1]), grad(mesh, flow.U.c[2])};
   PatchForce force;
   for (int i = 0; i < p.size; ++i) {
     const int f = p.start + i;
     const int b = f - mesh.internal_faces();
     const Eigen::Vector3d& S = mesh.area(f);
     const double dn = S.dot(mesh.d(f)) / S.norm();
-    force.pressure += flow.p.boundary[static_cast<std::size_t>(b)] * S;
-    force.viscous +=
-        flow.settings().nu * (flow.U.cell(mesh.owner(f)) - flow.U.face(b)) * S.norm() / dn;
+    const Eigen::Vector3d pressure = flow.p.boundary[static_cast<std::size_t>(b)] * S;
+    const auto P = static_cast<std::size_t>(mesh.owner(f));
+    Eigen::Vector3d transposed;  // (grad U)^T . S
+    for (int k = 0; k < 3; ++k)
+      transposed[k] = g[0][P][k] * S.x() + g[1][P][k] * S.y() + g[2][P][k] * S.z();
+    const Eigen::Vector3d viscous =
+        flow.settings().nu *
+        ((flow.U.cell(mesh.owner(f)) - flow.U.face(b)) * S.norm() / dn - transposed);
+    const Eigen::Vector3d arm = mesh.face_centre(f) - moment_point;
+    force.pressure += pressure;
+    force.viscous += viscous;
+    force.pressure_moment += arm.cross(pressure);
+    force.viscous_moment += arm.cross(viscous);
   }
   return force;
+}
+
+std::vector<std::pair<std::string, PatchForce>> wall_forces(const Pimple& flow,
+                                                            const Eigen::Vector3d& moment_point) {
+  std::vector<std::pair<std::string, PatchForce>> out;
+  for (const auto& patch : flow.mesh().grid().patches)
+    if (patch.type == mesher::PatchType::wall)
+      out.emplace_back(patch.name, patch_force(flow, patch.name, moment_point));
+  return out;
+}
+
+PatchForce total_wall_force(const Pimple& flow, const Eigen::Vector3d& moment_point) {
+  PatchForce sum;
+  for (const auto& [name, force] : wall_forces(flow, moment_point)) sum += force;
+  return sum;
 }
 
 }  // namespace auvloop::engine::fv

@@ -9,26 +9,38 @@
 
 namespace auvloop::engine::fv {
 
+namespace {
+std::vector<Eigen::Vector3d> face_vectors(const mesher::Grid& grid,
+                                          const mesher::GridGeometry& geometry) {
+  std::vector<Eigen::Vector3d> d(static_cast<std::size_t>(grid.faces()));
+  for (std::size_t f = 0; f < d.size(); ++f) {
+    const auto P = static_cast<std::size_t>(grid.owner[f]);
+    d[f] = f < static_cast<std::size_t>(grid.internal_faces())
+               ? Eigen::Vector3d(geometry.cell_centre[static_cast<std::size_t>(grid.neighbour[f])] -
+                                 geometry.cell_centre[P])
+               : Eigen::Vector3d(geometry.face_centre[f] - geometry.cell_centre[P]);
+  }
+  return d;
+}
+}  // namespace
+
 LeastSquaresGradient::LeastSquaresGradient(const mesher::Grid& grid,
                                            const mesher::GridGeometry& geometry)
+    : LeastSquaresGradient(grid, geometry, face_vectors(grid, geometry)) {}
+
+LeastSquaresGradient::LeastSquaresGradient(const mesher::Grid& grid,
+                                           const mesher::GridGeometry& /*geometry*/,
+                                           std::span<const Eigen::Vector3d> d)
     : grid_(grid),
-      geometry_(geometry),
+      d_(d.begin(), d.end()),
       inverse_(static_cast<std::size_t>(grid.cells), Eigen::Matrix3d::Zero()) {
-  const auto& c = geometry.cell_centre;
-  auto add = [&](int cell, const Eigen::Vector3d& d) {
-    inverse_[static_cast<std::size_t>(cell)] += d * d.transpose() / d.squaredNorm();
+  auto add = [&](int cell, const Eigen::Vector3d& dk) {
+    inverse_[static_cast<std::size_t>(cell)] += dk * dk.transpose() / dk.squaredNorm();
   };
   for (int f = 0; f < grid.faces(); ++f) {
     const auto fs = static_cast<std::size_t>(f);
-    const int P = grid.owner[fs];
-    if (f < grid.internal_faces()) {
-      const int N = grid.neighbour[fs];
-      const Eigen::Vector3d d = c[static_cast<std::size_t>(N)] - c[static_cast<std::size_t>(P)];
-      add(P, d);
-      add(N, -d);
-    } else {
-      add(P, geometry.face_centre[fs] - c[static_cast<std::size_t>(P)]);
-    }
+    add(grid.owner[fs], d_[fs]);
+    if (f < grid.internal_faces()) add(grid.neighbour[fs], -d_[fs]);
   }
   offsets_.assign(static_cast<std::size_t>(grid.cells) + 1, 0);
   for (int f = 0; f < grid.faces(); ++f) {
@@ -58,7 +70,6 @@ LeastSquaresGradient::LeastSquaresGradient(const mesher::Grid& grid,
 
 void LeastSquaresGradient::compute(std::span<const double> phi, std::span<const double> boundary,
                                    std::span<Eigen::Vector3d> gradient) const {
-  const auto& c = geometry_.cell_centre;
   const int internal = grid_.internal_faces();
   parallel_for(grid_.cells, [&](int cell) {
     const auto P = static_cast<std::size_t>(cell);
@@ -69,11 +80,12 @@ void LeastSquaresGradient::compute(std::span<const double> phi, std::span<const 
       Eigen::Vector3d d;
       double other;
       if (f < internal) {
-        const int n = grid_.owner[fs] == cell ? grid_.neighbour[fs] : grid_.owner[fs];
-        d = c[static_cast<std::size_t>(n)] - c[P];
+        const bool own = grid_.owner[fs] == cell;
+        const int n = own ? grid_.neighbour[fs] : grid_.owner[fs];
+        d = own ? d_[fs] : Eigen::Vector3d(-d_[fs]);
         other = phi[static_cast<std::size_t>(n)];
       } else {
-        d = geometry_.face_centre[fs] - c[P];
+        d = d_[fs];
         other = boundary[fs - static_cast<std::size_t>(internal)];
       }
       rhs += d * (other - phi[P]) / d.squaredNorm();

@@ -1,26 +1,36 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "auvloop/engine/fv/mesh.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
+#include "periodic.hpp"
+
 namespace auvloop::engine::fv {
 
-Mesh::Mesh(const mesher::Grid& grid)
-    : grid_(grid),
-      geo_(mesher::compute_geometry(grid)),
-      weight_(static_cast<std::size_t>(grid.faces()), 1.0),
-      alpha_(static_cast<std::size_t>(grid.faces()), 0.0),
-      d_(static_cast<std::size_t>(grid.faces())),
-      k_(static_cast<std::size_t>(grid.faces())),
-      patch_of_(static_cast<std::size_t>(grid.faces() - grid.internal_faces()), -1) {
+Mesh::Mesh(const mesher::Grid& source)
+    : source_(source), grid_(&source), geo_(mesher::compute_geometry(source)) {
+  if (auto coupled = couple_periodic(source, geo_)) {
+    coupled_ = std::make_unique<mesher::Grid>(std::move(coupled->grid));
+    geo_ = std::move(coupled->geometry);
+    shift_ = std::move(coupled->shift);
+    grid_ = coupled_.get();
+  }
+  const mesher::Grid& grid = *grid_;
+  const auto nf = static_cast<std::size_t>(grid.faces());
+  weight_.assign(nf, 1.0);
+  alpha_.assign(nf, 0.0);
+  d_.resize(nf);
+  k_.resize(nf);
+  patch_of_.assign(nf - static_cast<std::size_t>(grid.internal_faces()), -1);
   for (int f = 0; f < faces(); ++f) {
     const auto fs = static_cast<std::size_t>(f);
     const Eigen::Vector3d& S = area(f);
     const Eigen::Vector3d& xP = centre(owner(f));
     if (f < internal_faces()) {
-      const Eigen::Vector3d& xN = centre(neighbour(f));
+      const Eigen::Vector3d xN = neighbour_centre(f);
       d_[fs] = xN - xP;
       const double dP = std::abs(S.dot(face_centre(f) - xP));
       const double dN = std::abs(S.dot(xN - face_centre(f)));
@@ -56,7 +66,16 @@ Mesh::Mesh(const mesher::Grid& grid)
     if (f < internal_faces())
       cell_face_list_[static_cast<std::size_t>(fill[static_cast<std::size_t>(neighbour(f))]++)] = f;
   }
-  gradient_ = std::make_unique<LeastSquaresGradient>(grid_, geo_);
+  gradient_ = std::make_unique<LeastSquaresGradient>(grid, geo_, d_);
+}
+
+void Mesh::gradient(std::span<const double> cells, std::span<const double> boundary,
+                    std::span<Eigen::Vector3d> out) const {
+  const auto t0 = std::chrono::steady_clock::now();
+  gradient_->compute(cells, boundary, out);
+  gradient_seconds_.fetch_add(
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
+      std::memory_order_relaxed);
 }
 
 }  // namespace auvloop::engine::fv

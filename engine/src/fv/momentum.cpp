@@ -9,13 +9,18 @@
 namespace auvloop::engine::fv {
 
 Pimple::Momentum Pimple::assemble_momentum(bool final) {
-  const TimeScheme ts{settings_.dt, settings_.bdf2 && steps_ > 0};
+  const TimeScheme ts = time_scheme();
   Momentum m;
   for (std::size_t i = 0; i < 3; ++i) {
     if (!active_[i]) continue;
     m.eq[i] = ddt(mesh_, ts, U_old_[0][i], U_old_[1][i]) +
               div(mesh_, phi, U.c[i], settings_.convection) -
               laplacian(mesh_, settings_.nu, U.c[i]);
+    if (!body_force.empty()) {
+      std::vector<double> f(body_force.size());
+      for (std::size_t c = 0; c < f.size(); ++c) f[c] = body_force[c][static_cast<Eigen::Index>(i)];
+      m.eq[i].add_rhs(mesh_, f);
+    }
     if (!final && settings_.relax_u < 1) m.eq[i].relax(U.c[i].cells, settings_.relax_u);
   }
   return m;

@@ -8,8 +8,11 @@
 //      fields and throw DivergenceError naming where and when.
 #include "auvloop/engine/fv/pimple.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <numbers>
+#include <stdexcept>
 
 #include <fmt/format.h>
 
@@ -50,6 +53,14 @@ Pimple::Pimple(const Mesh& mesh, PimpleSettings settings)
     for (int i = 0; i < 3; ++i)
       if (std::abs(n[i]) > 0.999) active_[static_cast<std::size_t>(i)] = false;
   }
+  if (!(settings_.dt > 0))
+    throw std::invalid_argument(fmt::format("Pimple: dt must be positive, got {}", settings_.dt));
+  if (settings_.target_courant > 0 &&
+      !(settings_.max_dt_growth > 1 && settings_.max_dt_growth < 1 + std::numbers::sqrt2))
+    throw std::invalid_argument(fmt::format(
+        "Pimple: max_dt_growth must be in (1, 1 + sqrt 2) for stable variable-step BDF2, got {}",
+        settings_.max_dt_growth));
+  dt_ = settings_.dt;
   if (!settings_.pressure_solver) {
     const bool two_d = !(active_[0] && active_[1] && active_[2]);
     settings_.pressure_solver = two_d ? SymmetricMethod::cholmod_pcg : SymmetricMethod::cg_amg;
@@ -92,9 +103,30 @@ void Pimple::initialise() {
   for (auto& level : U_old_) level = u;
   for (auto& level : phi_old_) level = phi;
   steps_ = 0;
+  dt_old_ = 0;
+}
+
+void Pimple::set_time_step(double dt) {
+  if (!(dt > 0 && std::isfinite(dt)))
+    throw std::invalid_argument(fmt::format("Pimple: time step must be positive, got {}", dt));
+  dt_ = dt;
+}
+
+// dt for the target Courant number of the current flux (which the step will carry), limited in
+// growth (a flow at rest or slowing down would otherwise jump to large steps at once).
+void Pimple::adapt_time_step() {
+  const double co = courant(mesh_, phi, dt_).first;
+  double dt = dt_ * settings_.max_dt_growth;
+  if (co > 0) dt = std::min(dt, dt_ * settings_.target_courant / co);
+  if (settings_.max_dt > 0) dt = std::min(dt, settings_.max_dt);
+  dt_ = dt;
 }
 
 StepReport Pimple::step() {
+  if (settings_.target_courant > 0 && steps_ > 0) adapt_time_step();
+  if (!body_force.empty() && body_force.size() != static_cast<std::size_t>(mesh_.cells()))
+    throw std::invalid_argument(fmt::format("Pimple: body_force has {} entries for {} cells",
+                                            body_force.size(), mesh_.cells()));
   const VectorField U_good = U;
   const ScalarField p_good = p;
   const auto phi_good = phi;
@@ -105,14 +137,17 @@ StepReport Pimple::step() {
   phi_old_[1] = phi_old_[0];
   phi_old_[0] = phi;
   StepReport r;
+  const double gradient_seconds = mesh_.gradient_seconds();
   r.step = steps_ + 1;
-  r.time = time_ + settings_.dt;
+  r.dt = dt_;
+  r.time = time_ + dt_;
   try {
     for (int outer = 1; outer <= settings_.outer_iterations; ++outer) {
       const bool final = outer == settings_.outer_iterations;
       auto t0 = std::chrono::steady_clock::now();
       apply_slip();
       Momentum m = assemble_momentum(final);
+      r.seconds_assembly += seconds_since(t0);
       solve_momentum(m, r, outer == 1);
       r.seconds_momentum += seconds_since(t0);
       t0 = std::chrono::steady_clock::now();
@@ -124,13 +159,14 @@ StepReport Pimple::step() {
       if (outer > 1 && r.outer_residual < settings_.outer_tolerance) break;
     }
     const auto t0 = std::chrono::steady_clock::now();
-    const auto [co, cell] = courant(mesh_, phi, settings_.dt);
+    const auto [co, cell] = courant(mesh_, phi, dt_);
     r.max_courant = co;
     const auto d = div(mesh_, phi);
     for (int c = 0; c < mesh_.cells(); ++c)
       r.continuity_error += std::abs(d[static_cast<std::size_t>(c)]) * mesh_.volume(c);
-    r.continuity_error *= settings_.dt / mesh_.total_volume();
+    r.continuity_error *= dt_ / mesh_.total_volume();
     r.seconds_other = seconds_since(t0);
+    r.seconds_gradient = mesh_.gradient_seconds() - gradient_seconds;
     check(r);
   } catch (const std::exception& e) {
     U = U_good;
@@ -145,6 +181,7 @@ StepReport Pimple::step() {
   }
   time_ = r.time;
   ++steps_;
+  dt_old_ = dt_;
   return r;
 }
 
@@ -160,7 +197,7 @@ void Pimple::check(const StepReport& r) const {
     }
   }
   if (r.max_courant > settings_.max_courant) {
-    const auto [co, cell] = courant(mesh_, phi, settings_.dt);
+    const auto [co, cell] = courant(mesh_, phi, dt_);
     const auto& x = mesh_.centre(cell);
     throw std::runtime_error(
         fmt::format("Courant number {:.3g} beyond the limit {:.3g} in cell {} "

@@ -95,7 +95,7 @@ void Pimple::correct_pressure(const Momentum& m, StepReport& r, bool first, bool
   }
   // b. Rhie-Chow flux with the time-consistent correction.
   std::vector<double> phiHbyA = face_flux(HbyA);
-  const auto coeffs = TimeScheme{settings_.dt, settings_.bdf2 && steps_ > 0}.coeffs();
+  const auto coeffs = time_scheme().coeffs();
   for (std::size_t k = 0; k < 2; ++k) {
     if (coeffs[k + 1] == 0.0) continue;
     const auto interpolated = face_flux(U_old_[k]);
@@ -104,7 +104,7 @@ void Pimple::correct_pressure(const Momentum& m, StepReport& r, bool first, bool
       const double w = mesh_.weight(f);
       const double Df = w * D[static_cast<std::size_t>(mesh_.owner(f))] +
                         (1 - w) * D[static_cast<std::size_t>(mesh_.neighbour(f))];
-      phiHbyA[fs] += Df / settings_.dt * -coeffs[k + 1] * (phi_old_[k][fs] - interpolated[fs]);
+      phiHbyA[fs] += Df / dt_ * -coeffs[k + 1] * (phi_old_[k][fs] - interpolated[fs]);
     }
   }
   std::vector<double> Df(static_cast<std::size_t>(mesh_.faces()));

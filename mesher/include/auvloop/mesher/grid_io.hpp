@@ -15,7 +15,8 @@ namespace auvloop::mesher {
 // Writes DIR/constant/polyMesh/{points,faces,owner,neighbour,boundary} (ASCII, FoamFile v2.0).
 void write_openfoam_polymesh(const std::filesystem::path& case_dir, const Grid& g);
 
-// Cells as VTK polyhedra (type 42) with the given cell fields; points in the body frame.
+// Cells as VTK polyhedra (type 42) with the given cell fields (one value per cell, or three per
+// cell for a vector field); points in the body frame. Throws std::invalid_argument otherwise.
 void write_vtu(const std::filesystem::path& file, const Grid& g,
                const std::map<std::string, std::vector<double>>& cell_fields = {});
 

@@ -21,6 +21,10 @@ namespace auvloop::engine::fv {
 class LeastSquaresGradient {
  public:
   LeastSquaresGradient(const mesher::Grid& grid, const mesher::GridGeometry& geometry);
+  // With the face vectors d given per face (internal: neighbour centre - owner centre, which for
+  // a periodic face is the neighbour's image; boundary: face centre - owner centre).
+  LeastSquaresGradient(const mesher::Grid& grid, const mesher::GridGeometry& geometry,
+                       std::span<const Eigen::Vector3d> d);
 
   // phi: one value per cell; boundary: one value per boundary face (face index - internal faces).
   void compute(std::span<const double> phi, std::span<const double> boundary,
@@ -28,7 +32,7 @@ class LeastSquaresGradient {
 
  private:
   const mesher::Grid& grid_;
-  const mesher::GridGeometry& geometry_;
+  std::vector<Eigen::Vector3d> d_;        // per face, as in the constructor
   std::vector<Eigen::Matrix3d> inverse_;  // per cell
   // Faces of each cell (CSR, ascending face index): the per-cell gather in compute() sums in
   // this fixed order, in parallel, so the result does not depend on the number of threads.

@@ -10,8 +10,15 @@
 //            grad(phi)_f . S = alpha (phi_N - phi_P) + k . grad(phi)_f with k = S - alpha d
 //   k      = the non-orthogonal correction vector (zero on orthogonal faces), treated explicitly.
 // Boundary faces are numbered by their position after the internal faces (b = f - internal).
+//
+// Periodic patches (translational) are coupled: each matched pair of faces becomes one internal
+// face whose neighbour centre is the neighbour cell's image across the translation
+// (neighbour_centre), so every operator treats it like any other internal face. grid() is then a
+// copy with the pairs among the internal faces and the periodic patches empty; source_grid() is
+// the grid as given (same cells, for output).
 #pragma once
 
+#include <atomic>
 #include <memory>
 #include <span>
 #include <vector>
@@ -29,20 +36,30 @@ class Mesh {
   Mesh(const Mesh&) = delete;  // the gradient holds references into the mesh
   Mesh& operator=(const Mesh&) = delete;
 
-  const mesher::Grid& grid() const { return grid_; }
+  // The addressing the operators use (periodic pairs coupled).
+  const mesher::Grid& grid() const { return *grid_; }
+  // The grid as given (periodic faces still boundary faces): the cells are the same.
+  const mesher::Grid& source_grid() const { return source_; }
+  [[nodiscard]] bool periodic() const { return coupled_ != nullptr; }
   const mesher::GridGeometry& geometry() const { return geo_; }
-  int cells() const { return grid_.cells; }
-  int faces() const { return grid_.faces(); }
-  int internal_faces() const { return grid_.internal_faces(); }
+  int cells() const { return grid_->cells; }
+  int faces() const { return grid_->faces(); }
+  int internal_faces() const { return grid_->internal_faces(); }
   int boundary_faces() const { return faces() - internal_faces(); }
-  int owner(int f) const { return grid_.owner[static_cast<std::size_t>(f)]; }
-  int neighbour(int f) const { return grid_.neighbour[static_cast<std::size_t>(f)]; }
+  int owner(int f) const { return grid_->owner[static_cast<std::size_t>(f)]; }
+  int neighbour(int f) const { return grid_->neighbour[static_cast<std::size_t>(f)]; }
   const Eigen::Vector3d& area(int f) const { return geo_.face_area[static_cast<std::size_t>(f)]; }
   const Eigen::Vector3d& face_centre(int f) const {
     return geo_.face_centre[static_cast<std::size_t>(f)];
   }
   const Eigen::Vector3d& centre(int c) const {
     return geo_.cell_centre[static_cast<std::size_t>(c)];
+  }
+  // Centre of the neighbour of internal face f as seen from its owner: the cell centre, or for a
+  // periodic face its image across the translation.
+  Eigen::Vector3d neighbour_centre(int f) const {
+    const Eigen::Vector3d& x = centre(neighbour(f));
+    return shift_.empty() ? x : Eigen::Vector3d(x + shift_[static_cast<std::size_t>(f)]);
   }
   double volume(int c) const { return geo_.cell_volume[static_cast<std::size_t>(c)]; }
   double weight(int f) const { return weight_[static_cast<std::size_t>(f)]; }
@@ -61,19 +78,25 @@ class Mesh {
   }
   // Least-squares cell gradient of cell values with their boundary-face values.
   void gradient(std::span<const double> cells, std::span<const double> boundary,
-                std::span<Eigen::Vector3d> out) const {
-    gradient_->compute(cells, boundary, out);
+                std::span<Eigen::Vector3d> out) const;
+  // Wall-clock seconds spent in gradient() so far (profiling: the solver's phase split).
+  [[nodiscard]] double gradient_seconds() const {
+    return gradient_seconds_.load(std::memory_order_relaxed);
   }
 
  private:
-  const mesher::Grid& grid_;
+  const mesher::Grid& source_;
+  std::unique_ptr<mesher::Grid> coupled_;  // periodic grids only
+  const mesher::Grid* grid_;               // coupled_ or source_
   mesher::GridGeometry geo_;
+  std::vector<Eigen::Vector3d> shift_;  // per internal face (periodic grids only)
   std::vector<double> weight_, alpha_;
   std::vector<Eigen::Vector3d> d_, k_;
   std::vector<int> patch_of_;
   std::vector<int> cell_face_offsets_, cell_face_list_;
   double total_volume_ = 0;
   std::unique_ptr<LeastSquaresGradient> gradient_;
+  mutable std::atomic<double> gradient_seconds_{0.0};
 };
 
 }  // namespace auvloop::engine::fv

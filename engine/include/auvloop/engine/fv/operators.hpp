@@ -36,13 +36,19 @@ enum class Convection {
 Matrix div(const Mesh& mesh, std::span<const double> flux, const ScalarField& phi,
            Convection scheme);
 
-// Time derivative: (c0 phi + c1 phi_old + c2 phi_oldold) / dt, BDF2 (3/2, -2, 1/2) or Euler
-// (1, -1, 0) for the first step after a start.
+// Time derivative: (c0 phi + c1 phi_old + c2 phi_oldold) / dt, BDF2 or Euler (1, -1, 0) for the
+// first step after a start. BDF2 on variable steps, with w = dt / dt_old (the previous step):
+//   c0 = (1 + 2w) / (1 + w),  c1 = -(1 + w),  c2 = w^2 / (1 + w)
+// (the derivative at t^{n+1} of the quadratic through the three levels; (3/2, -2, 1/2) for w = 1;
+// zero-stable for w < 1 + sqrt 2).
 struct TimeScheme {
   double dt = 1;
   bool bdf2 = true;
+  double dt_old = 0;  // the previous step; 0: equal to dt
   [[nodiscard]] std::array<double, 3> coeffs() const {
-    return bdf2 ? std::array<double, 3>{1.5, -2.0, 0.5} : std::array<double, 3>{1.0, -1.0, 0.0};
+    if (!bdf2) return {1.0, -1.0, 0.0};
+    const double w = dt_old > 0 ? dt / dt_old : 1.0;
+    return {(1 + 2 * w) / (1 + w), -(1 + w), w * w / (1 + w)};
   }
 };
 Matrix ddt(const Mesh& mesh, const TimeScheme& ts, std::span<const double> old,

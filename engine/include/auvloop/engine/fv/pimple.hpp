@@ -9,6 +9,7 @@
 // initialise(), then step() once per time step.
 #pragma once
 
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
@@ -20,8 +21,14 @@
 namespace auvloop::engine::fv {
 
 struct PimpleSettings {
-  double nu = 1e-6;             // kinematic viscosity (m^2/s)
-  double dt = 1e-3;             // time step (s)
+  double nu = 1e-6;  // kinematic viscosity (m^2/s)
+  double dt = 1e-3;  // time step (s); the first one when adaptive
+  // Adaptive time step: > 0 sets dt before each step so that the maximum Courant number of the
+  // current flux approaches this, growing by at most max_dt_growth per step (BDF2 on variable
+  // steps is zero-stable for ratios below 1 + sqrt 2) and never beyond max_dt (0: no bound).
+  double target_courant = 0;
+  double max_dt_growth = 1.2;
+  double max_dt = 0;
   bool bdf2 = true;             // second order in time after the first step
   int outer_iterations = 1;     // PIMPLE outer loop (1: PISO); the paper uses 5
   int pressure_correctors = 2;  // per outer iteration
@@ -40,6 +47,7 @@ struct PimpleSettings {
 struct StepReport {
   int step = 0;
   double time = 0;
+  double dt = 0;  // the step's time step (s)
   double max_courant = 0;
   double momentum_residual = 0;  // initial normalised residual, first outer iteration (max comp)
   double pressure_residual = 0;  // initial normalised residual, first corrector
@@ -48,6 +56,9 @@ struct StepReport {
   int outer_iterations = 0;
   int pressure_iterations = 0;  // Krylov iterations summed over correctors (0 for CHOLMOD)
   double seconds_momentum = 0, seconds_pressure = 0, seconds_other = 0;
+  // Parts of the above: momentum assembly (in seconds_momentum) and every cell-gradient
+  // evaluation (deferred corrections, grad p; spread over all three).
+  double seconds_assembly = 0, seconds_gradient = 0;
 };
 
 // Thrown when a step diverges (NaN, Courant number beyond the limit); the solver's fields are
@@ -63,6 +74,10 @@ class Pimple {
   VectorField U;
   ScalarField p;
   std::vector<double> phi;  // volume flux through each face (m^3/s, out of the owner)
+  // Body force per unit mass in each cell (m/s^2; empty: none), e.g. the mean pressure gradient
+  // that drives a periodic channel or an actuator disk's thrust. An explicit momentum source,
+  // so it also enters H(U) and the Rhie-Chow flux, as in OpenFOAM's fvOptions.
+  std::vector<Eigen::Vector3d> body_force;
 
   // Marks a patch as slip (symmetry): zero normal velocity, zero tangential stress (lagged by
   // one outer iteration through the boundary values).
@@ -71,6 +86,19 @@ class Pimple {
   void initialise();
   StepReport step();
 
+  // Exact restart: write_checkpoint stores every value the next step reads besides the settings
+  // and boundary conditions (U, p, phi, both old time levels, time, step count, dt history) in a
+  // versioned binary file, atomically. read_checkpoint restores them into a solver constructed
+  // on the same grid with the same settings and conditions (after initialise()); the run then
+  // continues bitwise as if uninterrupted, except with cholmod-pcg, whose preconditioner is
+  // the factor of an earlier matrix (not stored). Throws std::runtime_error naming the file on a
+  // foreign, other-version, other-grid or truncated file, leaving the solver unchanged.
+  void write_checkpoint(const std::filesystem::path& file) const;
+  void read_checkpoint(const std::filesystem::path& file);
+  // Sets the time step of the following steps (prescribed sequences; the adaptive control
+  // overrides it). Throws std::invalid_argument unless dt > 0.
+  void set_time_step(double dt);
+  [[nodiscard]] double time_step() const { return dt_; }
   [[nodiscard]] double time() const { return time_; }
   [[nodiscard]] int steps() const { return steps_; }
   [[nodiscard]] const PimpleSettings& settings() const { return settings_; }
@@ -86,6 +114,10 @@ class Pimple {
   void apply_slip();
   [[nodiscard]] std::vector<double> face_flux(const std::array<std::vector<double>, 3>& u) const;
   void check(const StepReport& r) const;
+  void adapt_time_step();
+  [[nodiscard]] TimeScheme time_scheme() const {
+    return {dt_, settings_.bdf2 && steps_ > 0, dt_old_};
+  }
 
   const Mesh& mesh_;
   PimpleSettings settings_;
@@ -98,6 +130,8 @@ class Pimple {
   std::array<std::vector<double>, 2> phi_old_;
   double time_ = 0;
   int steps_ = 0;
+  double dt_ = 0;      // this step's time step
+  double dt_old_ = 0;  // the previous step's (0 before the first step)
 };
 
 // Maximum Courant number dt * sum |phi| / (2 V) over the cells, with the cell where it occurs.

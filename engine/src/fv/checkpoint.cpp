@@ -1,0 +1,131 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Exact checkpoint and restart of a Pimple run (docs/cfd.md, "Checkpoint and restart"): every
+// value a step reads besides the settings and boundary conditions, in binary (IEEE doubles as
+// stored in memory, so a restart continues bitwise), behind a versioned header:
+//   "AUVLFVCK" | u32 version | i32 cells | i32 faces | i32 boundary faces | i32 steps
+//   | f64 time | f64 dt | f64 dt_old
+//   | U (3 x cells, 3 x boundary) | p (cells, boundary) | phi (faces)
+//   | U^n, U^{n-1} (3 x cells each) | phi^n, phi^{n-1} (faces each)
+#include <cstdint>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "auvloop/engine/fv/pimple.hpp"
+#include "auvloop/geometry/file_io.hpp"
+
+namespace auvloop::engine::fv {
+
+namespace {
+constexpr char kMagic[8] = {'A', 'U', 'V', 'L', 'F', 'V', 'C', 'K'};
+constexpr std::uint32_t kVersion = 1;
+
+template <class T>
+void put(std::string& out, const T& v) {
+  out.append(reinterpret_cast<const char*>(&v), sizeof(T));
+}
+void put(std::string& out, const std::vector<double>& v) {
+  out.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(double));
+}
+
+class Reader {
+ public:
+  Reader(std::string data, std::string file) : data_(std::move(data)), file_(std::move(file)) {}
+  template <class T>
+  T get() {
+    T v;
+    take(&v, sizeof(T));
+    return v;
+  }
+  void get(std::vector<double>& v) { take(v.data(), v.size() * sizeof(double)); }
+  void expect_end() const {
+    if (pos_ != data_.size())
+      throw std::runtime_error(
+          fmt::format("checkpoint {}: {} bytes beyond the data", file_, data_.size() - pos_));
+  }
+  [[nodiscard]] const std::string& file() const { return file_; }
+
+ private:
+  void take(void* to, std::size_t n) {
+    if (data_.size() - pos_ < n)
+      throw std::runtime_error(fmt::format("checkpoint {}: truncated at byte {}", file_, pos_));
+    std::memcpy(to, data_.data() + pos_, n);
+    pos_ += n;
+  }
+  std::string data_, file_;
+  std::size_t pos_ = 0;
+};
+
+void expect_equal(const Reader& r, const char* what, std::int32_t stored, int actual) {
+  if (stored != actual)
+    throw std::runtime_error(fmt::format("checkpoint {}: written for {} {}, this grid has {}",
+                                         r.file(), stored, what, actual));
+}
+}  // namespace
+
+void Pimple::write_checkpoint(const std::filesystem::path& file) const {
+  std::string out(kMagic, sizeof(kMagic));
+  put(out, kVersion);
+  put(out, static_cast<std::int32_t>(mesh_.cells()));
+  put(out, static_cast<std::int32_t>(mesh_.faces()));
+  put(out, static_cast<std::int32_t>(mesh_.boundary_faces()));
+  put(out, static_cast<std::int32_t>(steps_));
+  put(out, time_);
+  put(out, dt_);
+  put(out, dt_old_);
+  for (const auto& c : U.c) put(out, c.cells);
+  for (const auto& c : U.c) put(out, c.boundary);
+  put(out, p.cells);
+  put(out, p.boundary);
+  put(out, phi);
+  for (const auto& level : U_old_)
+    for (const auto& c : level) put(out, c);
+  for (const auto& level : phi_old_) put(out, level);
+  if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
+  write_file_atomically(file, out);
+}
+
+void Pimple::read_checkpoint(const std::filesystem::path& file) {
+  Reader r(read_file_text(file), file.string());
+  char magic[8];
+  for (char& m : magic) m = r.get<char>();
+  if (std::memcmp(magic, kMagic, sizeof(kMagic)) != 0)
+    throw std::runtime_error(fmt::format("{} is not an auvloop flow checkpoint", file.string()));
+  const auto version = r.get<std::uint32_t>();
+  if (version != kVersion)
+    throw std::runtime_error(fmt::format("checkpoint {}: version {}, this build reads version {}",
+                                         file.string(), version, kVersion));
+  expect_equal(r, "cells", r.get<std::int32_t>(), mesh_.cells());
+  expect_equal(r, "faces", r.get<std::int32_t>(), mesh_.faces());
+  expect_equal(r, "boundary faces", r.get<std::int32_t>(), mesh_.boundary_faces());
+  // Read into copies so that a truncated file leaves the solver as it was.
+  const auto steps = r.get<std::int32_t>();
+  const auto time = r.get<double>(), dt = r.get<double>(), dt_old = r.get<double>();
+  VectorField u = U;
+  ScalarField pressure = p;
+  auto flux = phi;
+  auto u_old = U_old_;
+  auto flux_old = phi_old_;
+  for (auto& c : u.c) r.get(c.cells);
+  for (auto& c : u.c) r.get(c.boundary);
+  r.get(pressure.cells);
+  r.get(pressure.boundary);
+  r.get(flux);
+  for (auto& level : u_old)
+    for (auto& c : level) r.get(c);
+  for (auto& level : flux_old) r.get(level);
+  r.expect_end();
+  U = std::move(u);
+  p = std::move(pressure);
+  phi = std::move(flux);
+  U_old_ = std::move(u_old);
+  phi_old_ = std::move(flux_old);
+  steps_ = steps;
+  time_ = time;
+  dt_ = dt;
+  dt_old_ = dt_old;
+}
+
+}  // namespace auvloop::engine::fv
