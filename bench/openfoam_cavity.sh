@@ -2,9 +2,11 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 # Peer comparison: OpenFOAM's icoFoam (Debian package openfoam, v1912) and auvloop's bench_cfd on
 # the same 3D lid-driven cavity (unit cube, lid 1 m/s, nu = 0.01, N^3 uniform cells, dt for
-# Courant 1 at the lid, 2 pressure correctors, p by DIC-preconditioned CG to 1e-6), both
-# single-threaded; prints the seconds per time step of each (from the second step on for icoFoam,
-# so start-up is excluded; auvloop's solver time only) and the ratio.
+# Courant 1 at the lid, 2 pressure correctors, p to 1e-6), both single-threaded; prints the
+# seconds per time step of each (from the second step on for icoFoam, so start-up is excluded;
+# auvloop's solver time only) and the ratio, for two pairs of pressure solvers: DIC-preconditioned
+# CG on both sides, then each code's multigrid (OpenFOAM's GAMG with Gauss-Seidel smoothing,
+# auvloop's cg-amg, the default for 3D grids).
 # Like for like: both Euler in time, linear-upwind convection with a least-squares gradient of U,
 # PISO (one outer iteration). Remaining differences: OpenFOAM's p tolerance is on its normalised
 # residual, auvloop's on |r| / |b|; U by symmetric Gauss-Seidel (OpenFOAM) and Jacobi-BiCGSTAB
@@ -43,12 +45,6 @@ EOD
   echo "laplacianSchemes { default Gauss linear orthogonal; } interpolationSchemes { default linear; }"
   echo "snGradSchemes { default orthogonal; }"
 } > "$case/system/fvSchemes"
-{ header dictionary fvSolution
-  echo "solvers { p { solver PCG; preconditioner DIC; tolerance 1e-06; relTol 0; }"
-  echo "          pFinal { \$p; relTol 0; }"
-  echo "          U { solver smoothSolver; smoother symGaussSeidel; tolerance 1e-05; relTol 0; } }"
-  echo "PISO { nCorrectors 2; nNonOrthogonalCorrectors 0; pRefCell 0; pRefValue 0; }"
-} > "$case/system/fvSolution"
 { header dictionary transportProperties; echo "nu 0.01;"; } > "$case/constant/transportProperties"
 { header volVectorField U
   echo "dimensions [0 1 -1 0 0 0 0]; internalField uniform (0 0 0);"
@@ -58,13 +54,30 @@ EOD
   echo "dimensions [0 2 -2 0 0 0 0]; internalField uniform 0;"
   echo "boundaryField { lid { type zeroGradient; } walls { type zeroGradient; } }"
 } > "$case/0/p"
-bash -c "set +u; source $bashrc >/dev/null 2>&1; cd '$case' && blockMesh > log.blockMesh && icoFoam > log.icoFoam"
-foam=$(grep '^ExecutionTime' "$case/log.icoFoam" | awk '{print $3}' | python3 -c "
+# Seconds per icoFoam time step with the p solver given as fvSolution entries ($1).
+foam_step() {
+  { header dictionary fvSolution
+    echo "solvers { p { $1 tolerance 1e-06; relTol 0; }"
+    echo "          pFinal { \$p; relTol 0; }"
+    echo "          U { solver smoothSolver; smoother symGaussSeidel; tolerance 1e-05; relTol 0; } }"
+    echo "PISO { nCorrectors 2; nNonOrthogonalCorrectors 0; pRefCell 0; pRefValue 0; }"
+  } > "$case/system/fvSolution"
+  rm -rf "$case"/[1-9]* "$case"/0.[0-9]*
+  bash -c "set +u; source $bashrc >/dev/null 2>&1; cd '$case' && blockMesh > log.blockMesh && icoFoam > log.icoFoam"
+  grep '^ExecutionTime' "$case/log.icoFoam" | awk '{print $3}' | python3 -c "
 import sys; t = [float(x) for x in sys.stdin.read().split()]
-print((t[-1] - t[0]) / (len(t) - 1))")
-ours=$("$build/bench/bench_cfd" --n "$n" --steps "$steps" --threads 1 --time euler \
-  --convection linear-upwind --pressure cg-dic | awk '/s\/step/ {print $NF}')
+print((t[-1] - t[0]) / (len(t) - 1))"
+}
+# Seconds per auvloop time step with the pressure solver $1.
+ours_step() {
+  "$build/bench/bench_cfd" --n "$n" --steps "$steps" --threads 1 --time euler \
+    --convection linear-upwind --pressure "$1" | awk '/s\/step/ {print $NF}'
+}
 echo "cavity ${n}^3, $steps steps, 1 thread, Euler + linear upwind (least-squares grad U) on both sides"
-echo "  icoFoam  s/step $foam"
-echo "  auvloop  s/step $ours"
-python3 -c "print('  auvloop / icoFoam = %.2f' % ($ours / $foam))"
+for pair in "PCG DIC|solver PCG; preconditioner DIC;|cg-dic" \
+            "GAMG / cg-amg|solver GAMG; smoother GaussSeidel;|cg-amg"; do
+  IFS='|' read -r label foam_p ours_p <<< "$pair"
+  foam=$(foam_step "$foam_p")
+  ours=$(ours_step "$ours_p")
+  echo "  p by $label: icoFoam s/step $foam, auvloop s/step $ours, auvloop / icoFoam = $(python3 -c "print('%.2f' % ($ours / $foam))")"
+done

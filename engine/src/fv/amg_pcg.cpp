@@ -39,11 +39,13 @@ struct Level {
   int n = 0;
   std::vector<int> lo, hi;                         // the two cells of each face
   std::vector<int> row_start, adj_cell, adj_face;  // per cell: neighbours and shared faces
-  std::vector<double> diag, upper;                 // coefficients
-  std::vector<int> agg;                            // cell -> coarser cell
-  std::vector<int> coarse_face;                    // face -> coarser face; -1 inside a pair
-  std::vector<double> x, b, r;                     // work
-  std::vector<double> r0, c1, v1, v2;              // work of the K-cycle on this level
+  std::vector<double> diag, upper;
+  std::vector<double> row_value,
+      inv_diag;                  // the same by rows (load_rows)                 // coefficients
+  std::vector<int> agg;          // cell -> coarser cell
+  std::vector<int> coarse_face;  // face -> coarser face; -1 inside a pair
+  std::vector<double> x, b, r;   // work
+  std::vector<double> r0, c1, v1, v2;  // work of the K-cycle on this level
 
   void build_adjacency() {
     row_start.assign(static_cast<std::size_t>(n) + 1, 0);
@@ -67,24 +69,35 @@ struct Level {
     }
   }
 
+  // The coefficients by rows (compressed rows in adjacency order) and the inverse diagonal, from
+  // diag and upper: the sweeps and products then read memory in order.
+  void load_rows() {
+    row_value.resize(adj_face.size());
+    for (std::size_t k = 0; k < adj_face.size(); ++k) {
+      row_value[k] = upper[static_cast<std::size_t>(adj_face[k])];
+    }
+    inv_diag.resize(diag.size());
+    for (std::size_t i = 0; i < diag.size(); ++i) inv_diag[i] = 1.0 / diag[i];
+  }
+
+  // sum_j a_ij v_j over the neighbours j of cell i
+  [[nodiscard]] double off_diagonal(std::size_t i, std::span<const double> v) const {
+    double s = 0;
+    const auto end = static_cast<std::size_t>(row_start[i + 1]);
+    for (auto k = static_cast<std::size_t>(row_start[i]); k < end; ++k) {
+      s += row_value[k] * v[static_cast<std::size_t>(adj_cell[k])];
+    }
+    return s;
+  }
+
   // y = A v
   void multiply(std::span<const double> v, std::span<double> y) const {
-    for (std::size_t i = 0; i < static_cast<std::size_t>(n); ++i) y[i] = diag[i] * v[i];
-    for (std::size_t f = 0; f < lo.size(); ++f) {
-      const auto P = static_cast<std::size_t>(lo[f]), N = static_cast<std::size_t>(hi[f]);
-      y[P] += upper[f] * v[N];
-      y[N] += upper[f] * v[P];
+    for (std::size_t i = 0; i < static_cast<std::size_t>(n); ++i) {
+      y[i] = diag[i] * v[i] + off_diagonal(i, v);
     }
   }
 
-  void relax_cell(std::size_t i) {
-    double s = b[i];
-    for (auto k = static_cast<std::size_t>(row_start[i]);
-         k < static_cast<std::size_t>(row_start[i + 1]); ++k) {
-      s -= upper[static_cast<std::size_t>(adj_face[k])] * x[static_cast<std::size_t>(adj_cell[k])];
-    }
-    x[i] = s / diag[i];
-  }
+  void relax_cell(std::size_t i) { x[i] = (b[i] - off_diagonal(i, x)) * inv_diag[i]; }
   void sweep_forward() {
     for (std::size_t i = 0; i < static_cast<std::size_t>(n); ++i) relax_cell(i);
   }
@@ -294,16 +307,16 @@ int AmgPcg::solve(const Matrix& A, std::span<double> x, double tolerance, int ma
       h_->levels.push_back(std::move(coarse));
     }
     h_->levels.back().agg.clear();
-
   } else {
     load_finest(h_->levels[0], mesh_, A);
     for (std::size_t l = 0; l + 1 < h_->levels.size(); ++l) {
       h_->levels[l].restrict_matrix(h_->levels[l + 1]);
     }
   }
+  for (Level& L : h_->levels) L.load_rows();
   h_->factorise_coarsest();
 
-  // Flexible conjugate gradients: z = M r with M the (slightly nonlinear) V-cycle.
+  // Flexible conjugate gradients: z = M r with M the (nonlinear) K-cycle.
   Level& F = h_->levels[0];
   const auto n = static_cast<std::size_t>(F.n);
   std::vector<double> r(n), r_old(n), z(n), p(n), q(n);
