@@ -14,6 +14,7 @@ Mesh::Mesh(const mesher::Grid& grid)
       alpha_(static_cast<std::size_t>(grid.faces()), 0.0),
       d_(static_cast<std::size_t>(grid.faces())),
       k_(static_cast<std::size_t>(grid.faces())),
+      skew_(static_cast<std::size_t>(grid.faces()), Eigen::Vector3d::Zero()),
       patch_of_(static_cast<std::size_t>(grid.faces() - grid.internal_faces()), -1) {
   for (int f = 0; f < faces(); ++f) {
     const auto fs = static_cast<std::size_t>(f);
@@ -25,6 +26,8 @@ Mesh::Mesh(const mesher::Grid& grid)
       const double dP = std::abs(S.dot(face_centre(f) - xP));
       const double dN = std::abs(S.dot(xN - face_centre(f)));
       weight_[fs] = dN / (dP + dN);
+      skew_[fs] = face_centre(f) - (weight_[fs] * xP + (1 - weight_[fs]) * xN);
+      skewed_ = skewed_ || skew_[fs].norm() > 1e-12 * d_[fs].norm();
     } else {
       d_[fs] = face_centre(f) - xP;
     }
