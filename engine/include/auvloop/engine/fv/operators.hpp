@@ -37,6 +37,12 @@ enum class Convection {
   upwind,         // first order, bounded
   linear_upwind,  // phi_C + grad(phi)_C . (x_f - x_C): second order, unbounded
   van_leer,       // TVD (Darwish-Moukalled r on unstructured grids): second order, bounded
+  // van Leer's limited value (which sits at the mid-point between the two centres) moved to the
+  // face centre with the upwind gradient, then clipped to the range of the two cell values:
+  // identical to van_leer on uniform grids, second order also where the grid's skewness does
+  // not shrink under refinement (van_leer is first order there: its value is off the face by
+  // the skewness). The default.
+  van_leer_skew,
 };
 Matrix div(const Mesh& mesh, std::span<const double> flux, const ScalarField& phi,
            Convection scheme);
