@@ -54,31 +54,40 @@ LeastSquaresGradient::LeastSquaresGradient(const mesher::Grid& grid,
     }
     inverse_[i] = lu.inverse();
   }
+  weights_.resize(faces_.size());
+  other_.resize(faces_.size());
+  for (int cell = 0; cell < grid.cells; ++cell) {
+    const auto P = static_cast<std::size_t>(cell);
+    for (int k = offsets_[P]; k < offsets_[P + 1]; ++k) {
+      const auto ks = static_cast<std::size_t>(k);
+      const auto fs = static_cast<std::size_t>(faces_[ks]);
+      Eigen::Vector3d d;
+      if (faces_[ks] < grid.internal_faces()) {
+        const int n = grid.owner[fs] == cell ? grid.neighbour[fs] : grid.owner[fs];
+        d = c[static_cast<std::size_t>(n)] - c[P];
+        other_[ks] = n;
+      } else {
+        d = geometry.face_centre[fs] - c[P];
+        other_[ks] = -1 - (faces_[ks] - grid.internal_faces());
+      }
+      weights_[ks] = inverse_[P] * d / d.squaredNorm();
+    }
+  }
 }
 
 void LeastSquaresGradient::compute(std::span<const double> phi, std::span<const double> boundary,
                                    std::span<Eigen::Vector3d> gradient) const {
-  const auto& c = geometry_.cell_centre;
-  const int internal = grid_.internal_faces();
   parallel_for(grid_.cells, [&](int cell) {
     const auto P = static_cast<std::size_t>(cell);
-    Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
+    Eigen::Vector3d g = Eigen::Vector3d::Zero();
     for (int k = offsets_[P]; k < offsets_[P + 1]; ++k) {
-      const int f = faces_[static_cast<std::size_t>(k)];
-      const auto fs = static_cast<std::size_t>(f);
-      Eigen::Vector3d d;
-      double other;
-      if (f < internal) {
-        const int n = grid_.owner[fs] == cell ? grid_.neighbour[fs] : grid_.owner[fs];
-        d = c[static_cast<std::size_t>(n)] - c[P];
-        other = phi[static_cast<std::size_t>(n)];
-      } else {
-        d = geometry_.face_centre[fs] - c[P];
-        other = boundary[fs - static_cast<std::size_t>(internal)];
-      }
-      rhs += d * (other - phi[P]) / d.squaredNorm();
+      const auto ks = static_cast<std::size_t>(k);
+      const int o = other_[ks];
+      const double other =
+          o >= 0 ? phi[static_cast<std::size_t>(o)] : boundary[static_cast<std::size_t>(-1 - o)];
+      g += weights_[ks] * (other - phi[P]);
     }
-    gradient[P] = inverse_[P] * rhs;
+    gradient[P] = g;
   });
 }
 
