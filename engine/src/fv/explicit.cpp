@@ -16,6 +16,15 @@ Eigen::Vector3d interpolate(const Mesh& mesh, std::span<const Eigen::Vector3d> c
          (1 - w) * cells[static_cast<std::size_t>(mesh.neighbour(f))];
 }
 
+double interpolate(const Mesh& mesh, std::span<const double> cells,
+                   std::span<const Eigen::Vector3d> gradients, int f) {
+  const double w = mesh.weight(f);
+  const auto P = static_cast<std::size_t>(mesh.owner(f));
+  const auto N = static_cast<std::size_t>(mesh.neighbour(f));
+  const Eigen::Vector3d g = w * gradients[P] + (1 - w) * gradients[N];
+  return w * cells[P] + (1 - w) * cells[N] + g.dot(mesh.skew(f));
+}
+
 std::vector<double> div(const Mesh& mesh, std::span<const double> face_flux) {
   std::vector<double> d(static_cast<std::size_t>(mesh.cells()), 0.0);
   for (int f = 0; f < mesh.faces(); ++f) {

@@ -66,31 +66,40 @@ LeastSquaresGradient::LeastSquaresGradient(const mesher::Grid& grid,
     }
     inverse_[i] = lu.inverse();
   }
+  weights_.resize(faces_.size());
+  other_.resize(faces_.size());
+  for (int cell = 0; cell < grid.cells; ++cell) {
+    const auto P = static_cast<std::size_t>(cell);
+    for (int k = offsets_[P]; k < offsets_[P + 1]; ++k) {
+      const auto ks = static_cast<std::size_t>(k);
+      const int f = faces_[ks];
+      const auto fs = static_cast<std::size_t>(f);
+      Eigen::Vector3d dk = d_[fs];
+      if (f < grid.internal_faces()) {
+        const bool own = grid.owner[fs] == cell;
+        other_[ks] = own ? grid.neighbour[fs] : grid.owner[fs];
+        if (!own) dk = -dk;
+      } else {
+        other_[ks] = -1 - (f - grid.internal_faces());
+      }
+      weights_[ks] = inverse_[P] * dk / dk.squaredNorm();
+    }
+  }
 }
 
 void LeastSquaresGradient::compute(std::span<const double> phi, std::span<const double> boundary,
                                    std::span<Eigen::Vector3d> gradient) const {
-  const int internal = grid_.internal_faces();
   parallel_for(grid_.cells, [&](int cell) {
     const auto P = static_cast<std::size_t>(cell);
-    Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
+    Eigen::Vector3d g = Eigen::Vector3d::Zero();
     for (int k = offsets_[P]; k < offsets_[P + 1]; ++k) {
-      const int f = faces_[static_cast<std::size_t>(k)];
-      const auto fs = static_cast<std::size_t>(f);
-      Eigen::Vector3d d;
-      double other;
-      if (f < internal) {
-        const bool own = grid_.owner[fs] == cell;
-        const int n = own ? grid_.neighbour[fs] : grid_.owner[fs];
-        d = own ? d_[fs] : Eigen::Vector3d(-d_[fs]);
-        other = phi[static_cast<std::size_t>(n)];
-      } else {
-        d = d_[fs];
-        other = boundary[fs - static_cast<std::size_t>(internal)];
-      }
-      rhs += d * (other - phi[P]) / d.squaredNorm();
+      const auto ks = static_cast<std::size_t>(k);
+      const int o = other_[ks];
+      const double other =
+          o >= 0 ? phi[static_cast<std::size_t>(o)] : boundary[static_cast<std::size_t>(-1 - o)];
+      g += weights_[ks] * (other - phi[P]);
     }
-    gradient[P] = inverse_[P] * rhs;
+    gradient[P] = g;
   });
 }
 

@@ -24,6 +24,7 @@ Mesh::Mesh(const mesher::Grid& source)
   alpha_.assign(nf, 0.0);
   d_.resize(nf);
   k_.resize(nf);
+  skew_.assign(nf, Eigen::Vector3d::Zero());
   patch_of_.assign(nf - static_cast<std::size_t>(grid.internal_faces()), -1);
   for (int f = 0; f < faces(); ++f) {
     const auto fs = static_cast<std::size_t>(f);
@@ -35,6 +36,8 @@ Mesh::Mesh(const mesher::Grid& source)
       const double dP = std::abs(S.dot(face_centre(f) - xP));
       const double dN = std::abs(S.dot(xN - face_centre(f)));
       weight_[fs] = dN / (dP + dN);
+      skew_[fs] = face_centre(f) - (weight_[fs] * xP + (1 - weight_[fs]) * xN);
+      skewed_ = skewed_ || skew_[fs].norm() > 1e-12 * d_[fs].norm();
     } else {
       d_[fs] = face_centre(f) - xP;
     }

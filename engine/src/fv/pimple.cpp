@@ -136,6 +136,9 @@ StepReport Pimple::step() {
   for (std::size_t i = 0; i < 3; ++i) U_old_[0][i] = U.c[i].cells;
   phi_old_[1] = phi_old_[0];
   phi_old_[0] = phi;
+  const auto coeffs = TimeScheme{settings_.dt, settings_.bdf2 && steps_ > 0}.coeffs();
+  for (std::size_t k = 0; k < 2; ++k)
+    U_old_flux_[k] = coeffs[k + 1] == 0.0 ? std::vector<double>{} : face_flux(U_old_[k]);
   StepReport r;
   const double gradient_seconds = mesh_.gradient_seconds();
   r.step = steps_ + 1;

@@ -69,7 +69,7 @@ MmsError mms_convection_diffusion(int n) {
   // Deferred corrections (non-orthogonality, van Leer) converge by fixed-point iteration.
   for (int it = 0; it < 200; ++it) {
     fv::Matrix eq =
-        fv::div(mesh, flux, phi, fv::Convection::van_leer) - fv::laplacian(mesh, kGamma, phi);
+        fv::div(mesh, flux, phi, fv::Convection::van_leer_skew) - fv::laplacian(mesh, kGamma, phi);
     eq.add_rhs(mesh, s);
     const auto before = phi.cells;
     solver.solve_asymmetric(eq, phi.cells, fv::AsymmetricMethod::bicgstab_ilut);

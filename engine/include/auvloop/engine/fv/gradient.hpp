@@ -37,6 +37,11 @@ class LeastSquaresGradient {
   // Faces of each cell (CSR, ascending face index): the per-cell gather in compute() sums in
   // this fixed order, in parallel, so the result does not depend on the number of threads.
   std::vector<int> offsets_, faces_;
+  // Per entry of faces_: the weight vector inverse_P d_k / |d_k|^2 (precomputed, so compute() is
+  // a weighted sum of differences) and the other value's index: a cell (>= 0) or boundary face b
+  // encoded as -1 - b.
+  std::vector<Eigen::Vector3d> weights_;
+  std::vector<int> other_;
 };
 
 }  // namespace auvloop::engine::fv

@@ -35,7 +35,7 @@ struct PimpleSettings {
   int non_orthogonal_correctors = 0;
   double relax_u = 1.0;  // momentum under-relaxation (all but the final outer iteration)
   double relax_p = 1.0;  // pressure under-relaxation (all but the final outer iteration)
-  Convection convection = Convection::van_leer;
+  Convection convection = Convection::van_leer_skew;
   // Fastest measured (docs/cfd.md, "Pressure solver"): cholmod-pcg on 2D grids, cg-amg in 3D,
   // where the Cholesky factor fills in too much; empty means choose by the grid.
   std::optional<SymmetricMethod> pressure_solver;
@@ -128,6 +128,10 @@ class Pimple {
   // Old time levels: [0] = n, [1] = n - 1.
   std::array<std::array<std::vector<double>, 3>, 2> U_old_;
   std::array<std::vector<double>, 2> phi_old_;
+  // face_flux(U_old_[k]) for the Rhie-Chow time correction: derived from U_old_ at the start of
+  // every step (the skewness-corrected interpolation costs gradients; once per step, not per
+  // corrector).
+  std::array<std::vector<double>, 2> U_old_flux_;
   double time_ = 0;
   int steps_ = 0;
   double dt_ = 0;      // this step's time step
