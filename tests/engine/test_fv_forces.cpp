@@ -17,6 +17,7 @@
 #include "auvloop/engine/fv/pimple.hpp"
 #include "auvloop/mesher/cylinder_grid.hpp"
 #include "auvloop/mesher/generators.hpp"
+#include "couette_flow.hpp"
 
 using namespace auvloop;
 using engine::fv::Pimple;
@@ -85,32 +86,11 @@ double taylor_couette_torque_ratio(int nr, int nt) {
 }  // namespace
 
 TEST(FvForces, CouetteMomentHasTheExactLeverArm) {
-  const double U = 0.5, H = 0.2, L = 1.0, nu = 0.01, dz = 0.05;
-  mesher::BoxPatches patches;
-  patches.names = {"inlet", "outlet", "bottom", "top", "front", "back"};
-  patches.types = {mesher::PatchType::inlet, mesher::PatchType::outlet, mesher::PatchType::wall,
-                   mesher::PatchType::wall,  mesher::PatchType::empty,  mesher::PatchType::empty};
-  const auto grid =
-      mesher::cartesian_box(mesher::graded_nodes(0, L, 10), mesher::graded_nodes(0, H, 8, 1.3),
-                            {0, dz}, patches, "couette");
-  const engine::fv::Mesh mesh(grid);
-  engine::fv::PimpleSettings s;
-  s.nu = nu;
-  s.dt = 0.5;
-  s.bdf2 = false;
-  s.tolerance = 1e-12;
-  Pimple flow(mesh, s);
-  flow.U.fix(mesh, "bottom", {0, 0, 0});
-  flow.U.fix(mesh, "top", {U, 0, 0});
-  flow.U.fix(mesh, "inlet", {0, 0, 0});
-  for (int i = 0; i < grid.patches[0].size; ++i)
-    flow.U.c[0].bcs[0].value[static_cast<std::size_t>(i)] =
-        U * mesh.face_centre(grid.patches[0].start + i).y() / H;
-  flow.p.fix(mesh, "outlet", 0.0);
-  flow.initialise();
-  for (int k = 0; k < 60; ++k) flow.step();
+  const test::CouetteFlow couette;
+  const auto& flow = couette.flow;
+  const double H = test::CouetteFlow::H, dz = test::CouetteFlow::dz;
   const Eigen::Vector3d x0(0.3, -0.1, 0.02);
-  const double shear = nu * U / H * L * dz;  // exact force on each wall
+  const double shear = test::CouetteFlow::shear();
   const auto walls = engine::fv::wall_forces(flow, x0);
   ASSERT_EQ(walls.size(), 2u);  // inlet and outlet are not walls
   EXPECT_EQ(walls[0].first, "bottom");

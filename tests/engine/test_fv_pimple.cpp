@@ -9,6 +9,7 @@
 #include "auvloop/engine/fv/forces.hpp"
 #include "auvloop/engine/fv/pimple.hpp"
 #include "auvloop/mesher/generators.hpp"
+#include "couette_flow.hpp"
 
 using namespace auvloop;
 using engine::fv::Pimple;
@@ -118,38 +119,16 @@ TEST(FvPimple, DivergenceNamesStepAndCellAndKeepsTheLastGoodFields) {
 }
 
 TEST(FvPimple, CouetteFlowIsExactAndGivesTheWallShear) {
-  // Plane Couette flow u = U y / H between a wall at rest (y = 0) and one moving at U (y = H),
-  // entering with that profile, on cells graded in y: velocity linear in y is reproduced exactly
-  // by every operator, so the steady solution and the wall forces nu U / H per area are exact to
-  // the solver tolerance (1e-10 relative after the steady state).
-  const double U = 0.5, H = 0.2, L = 1.0, nu = 0.01, dz = 0.05;
-  mesher::BoxPatches patches;
-  patches.names = {"inlet", "outlet", "bottom", "top", "front", "back"};
-  patches.types = {mesher::PatchType::inlet, mesher::PatchType::outlet, mesher::PatchType::wall,
-                   mesher::PatchType::wall,  mesher::PatchType::empty,  mesher::PatchType::empty};
-  const auto grid =
-      mesher::cartesian_box(mesher::graded_nodes(0, L, 10), mesher::graded_nodes(0, H, 8, 1.3),
-                            {0, dz}, patches, "couette");
-  const engine::fv::Mesh mesh(grid);
-  engine::fv::PimpleSettings s;
-  s.nu = nu;
-  s.dt = 0.5;
-  s.bdf2 = false;
-  s.tolerance = 1e-12;
-  Pimple flow(mesh, s);
-  flow.U.fix(mesh, "bottom", {0, 0, 0});
-  flow.U.fix(mesh, "top", {U, 0, 0});
-  flow.U.fix(mesh, "inlet", {0, 0, 0});
-  const auto& inlet = grid.patches[0];
-  for (int i = 0; i < inlet.size; ++i)
-    flow.U.c[0].bcs[0].value[static_cast<std::size_t>(i)] =
-        U * mesh.face_centre(inlet.start + i).y() / H;
-  flow.p.fix(mesh, "outlet", 0.0);
-  flow.initialise();
-  for (int k = 0; k < 60; ++k) flow.step();
+  // Plane Couette flow (tests/support/couette_flow.hpp): velocity linear in y is reproduced
+  // exactly by every operator, so the steady solution and the wall forces nu U / H per area are
+  // exact to the solver tolerance (1e-10 relative after the steady state).
+  const test::CouetteFlow couette;
+  const auto& mesh = couette.mesh;
+  const auto& flow = couette.flow;
+  const double U = test::CouetteFlow::U, H = test::CouetteFlow::H;
   for (int c = 0; c < mesh.cells(); ++c)
     EXPECT_NEAR(flow.U.c[0].cells[static_cast<std::size_t>(c)], U * mesh.centre(c).y() / H, 1e-9);
-  const double shear = nu * U / H * L * dz;
+  const double shear = test::CouetteFlow::shear();
   const auto top = engine::fv::patch_force(flow, "top");
   const auto bottom = engine::fv::patch_force(flow, "bottom");
   EXPECT_NEAR(top.viscous.x(), -shear, 1e-9 * shear);

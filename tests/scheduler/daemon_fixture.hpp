@@ -170,6 +170,17 @@ class Daemon {
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
   }
+  // Cancels a job or an optimisation; returns the number of jobs cancelled.
+  int cancel(const std::string& id) {
+    v1::IdRequest req;
+    req.set_id(id);
+    v1::CancelResponse resp;
+    auto c = ctx();
+    const auto st = stub_->Cancel(c.get(), req, &resp);
+    if (!st.ok()) throw std::runtime_error("Cancel: " + st.error_message());
+    return resp.jobs_cancelled();
+  }
+
   // Polls a job until a worker runs it (at most 5 s); returns its last state.
   v1::State wait_running(const std::string& id) {
     for (int i = 0; i < 500 && job(id).state() != v1::RUNNING; ++i) {

@@ -138,12 +138,7 @@ TEST(Daemon, CancelStopsARunningJob) {
   d.start();
   const auto job = d.submit(heading_case("sleeper"));
   ASSERT_EQ(d.wait_running(job.id()), v1::RUNNING);
-  v1::IdRequest req;
-  req.set_id(job.id());
-  v1::CancelResponse resp;
-  auto c = Daemon::ctx();
-  ASSERT_TRUE(d.stub().Cancel(c.get(), req, &resp).ok());
-  EXPECT_EQ(resp.jobs_cancelled(), 1);
+  EXPECT_EQ(d.cancel(job.id()), 1);
   EXPECT_EQ(d.wait_job(job.id(), 30).state(), v1::CANCELLED);
 }
 
@@ -154,11 +149,7 @@ TEST(Daemon, CancelSurvivesAKillRightAfterTheReply) {
   d.start();
   const auto job = d.submit(heading_case("sleeper"));
   ASSERT_EQ(d.wait_running(job.id()), v1::RUNNING);
-  v1::IdRequest req;
-  req.set_id(job.id());
-  v1::CancelResponse resp;
-  auto c = Daemon::ctx();
-  ASSERT_TRUE(d.stub().Cancel(c.get(), req, &resp).ok());
+  ASSERT_EQ(d.cancel(job.id()), 1);
   d.kill9();
   d.start();
   std::this_thread::sleep_for(std::chrono::milliseconds(600));  // a dispatch round or more

@@ -175,14 +175,22 @@ double Channel::recirculation_length() const {
 }
 }  // namespace
 
-CylinderResult schaefer_turek_2d1(int cells_per_side, double dt) {
-  const auto t_start = std::chrono::steady_clock::now();
+namespace {
+// Both cases: nu = 1e-3 m^2/s, one non-orthogonal corrector, two pressure correctors.
+fv::PimpleSettings settings(double dt) {
   fv::PimpleSettings s;
   s.nu = 1e-3;
   s.dt = dt;
   s.non_orthogonal_correctors = 1;
-  s.bdf2 = false;
   s.pressure_correctors = 2;
+  return s;
+}
+}  // namespace
+
+CylinderResult schaefer_turek_2d1(int cells_per_side, double dt) {
+  const auto t_start = std::chrono::steady_clock::now();
+  fv::PimpleSettings s = settings(dt);
+  s.bdf2 = false;  // pseudo-time marching to the steady state
   s.max_courant = 1e3;
   Channel ch(cells_per_side, 0.3, s);
   auto& flow = ch.flow();
@@ -229,13 +237,8 @@ double peak(const std::vector<double>& x) {
 SheddingResult schaefer_turek_2d2(int cells_per_side, double dt, double end_time,
                                   int measured_periods) {
   const auto t_start = std::chrono::steady_clock::now();
-  fv::PimpleSettings s;
-  s.nu = 1e-3;
-  s.dt = dt;
-  s.non_orthogonal_correctors = 1;
-  s.bdf2 = true;
+  fv::PimpleSettings s = settings(dt);
   s.outer_iterations = 2;
-  s.pressure_correctors = 2;
   s.max_courant = 20;
   Channel ch(cells_per_side, 1.5, s);
   auto& flow = ch.flow();
