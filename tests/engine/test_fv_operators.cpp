@@ -93,6 +93,17 @@ TEST(FvOperators, VanLeerConvectionOfAStepStaysBounded) {
   EXPECT_TRUE(lo_lu < -1e-3 || hi_lu > 1 + 1e-3) << lo_lu << " " << hi_lu;
 }
 
+namespace {
+// The Schaefer-Turek channel with m cells per side of the O-grid's box.
+mesher::CylinderChannelSpec o_grid_spec(int m) {
+  mesher::CylinderChannelSpec spec;
+  spec.cells_per_side = m;
+  spec.radial_cells = m / 2;
+  spec.downstream_cells = 2 * m;
+  return spec;
+}
+}  // namespace
+
 TEST(FvOperators, SkewCorrectedInterpolationIsSecondOrderAtTheOGridCorners) {
   // The cylinder channel's O-grid kinks at the box corners: skewness |x_f - x_f'| / |d| about
   // 0.47 there on every refinement. Interpolating a smooth field (exact cell and boundary values)
@@ -103,10 +114,7 @@ TEST(FvOperators, SkewCorrectedInterpolationIsSecondOrderAtTheOGridCorners) {
            std::cos(2 * std::numbers::pi * x.y() / 0.41);
   };
   auto errors = [&](int m) {
-    mesher::CylinderChannelSpec spec;
-    spec.cells_per_side = m;
-    spec.radial_cells = m / 2;
-    spec.downstream_cells = 2 * m;
+    const auto spec = o_grid_spec(m);
     const auto grid = mesher::cylinder_channel(spec);
     const fv::Mesh mesh(grid);
     std::vector<double> cells(static_cast<std::size_t>(mesh.cells()));
@@ -148,10 +156,7 @@ TEST(FvOperators, SkewVanLeerConvectionIsConsistentAtTheOGridCorners) {
   const auto exact = [](const Eigen::Vector3d& x) { return std::exp(2 * x.x() + x.y()); };
   const Eigen::Vector3d u(0.3, 0.1, 0);
   auto truncation = [&](int m, fv::Convection scheme) {
-    mesher::CylinderChannelSpec spec;
-    spec.cells_per_side = m;
-    spec.radial_cells = m / 2;
-    spec.downstream_cells = 2 * m;
+    const auto spec = o_grid_spec(m);
     const auto grid = mesher::cylinder_channel(spec);
     const fv::Mesh mesh(grid);
     fv::ScalarField phi(mesh, "phi");
