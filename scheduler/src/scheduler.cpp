@@ -252,10 +252,15 @@ void Scheduler::launch(JobRecord& job) {
   fs::create_directories(dir);
   json payload = job.payload;
   if (job.optimization_id && !payload.contains("bundle")) {  // stored once, with the optimisation
-    const auto rec = store_->optimization(*job.optimization_id);
-    if (!rec)
+    // The running optimisation holds its record in memory; reading it back would parse the
+    // optimizer's whole state for every launch.
+    if (const auto it = runtimes_.find(*job.optimization_id); it != runtimes_.end()) {
+      payload["bundle"] = it->second->record.bundle;
+    } else if (const auto rec = store_->optimization(*job.optimization_id)) {
+      payload["bundle"] = rec->bundle;
+    } else {
       throw std::runtime_error(fmt::format("job {}: its optimisation is gone", job_id(job.id)));
-    payload["bundle"] = rec->bundle;
+    }
   }
   write_file_atomically(dir / "job.json",
                         json{{"key", job.key}, {"payload", payload}}.dump() + "\n");
