@@ -6,6 +6,7 @@
 //   | f64 time | f64 dt | f64 dt_old
 //   | U (3 x cells, 3 x boundary) | p (cells, boundary) | phi (faces)
 //   | U^n, U^{n-1} (3 x cells each) | phi^n, phi^{n-1} (faces each)
+//   | 3 x (i32 n | predictor force component, n = cells or 0)   (version 2)
 #include <cstdint>
 #include <cstring>
 #include <stdexcept>
@@ -20,7 +21,7 @@ namespace auvloop::engine::fv {
 
 namespace {
 constexpr char kMagic[8] = {'A', 'U', 'V', 'L', 'F', 'V', 'C', 'K'};
-constexpr std::uint32_t kVersion = 1;
+constexpr std::uint32_t kVersion = 2;
 
 template <class T>
 void put(std::string& out, const T& v) {
@@ -83,6 +84,10 @@ void Pimple::write_checkpoint(const std::filesystem::path& file) const {
   for (const auto& level : U_old_)
     for (const auto& c : level) put(out, c);
   for (const auto& level : phi_old_) put(out, level);
+  for (const auto& force : predictor_force_) {
+    put(out, static_cast<std::int32_t>(force.size()));
+    put(out, force);
+  }
   if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
   write_file_atomically(file, out);
 }
@@ -116,12 +121,20 @@ void Pimple::read_checkpoint(const std::filesystem::path& file) {
   for (auto& level : u_old)
     for (auto& c : level) r.get(c);
   for (auto& level : flux_old) r.get(level);
+  auto forces = predictor_force_;
+  for (auto& force : forces) {
+    const auto size = r.get<std::int32_t>();
+    if (size != 0) expect_equal(r, "cells (predictor force)", size, mesh_.cells());
+    force.assign(static_cast<std::size_t>(size), 0.0);
+    r.get(force);
+  }
   r.expect_end();
   U = std::move(u);
   p = std::move(pressure);
   phi = std::move(flux);
   U_old_ = std::move(u_old);
   phi_old_ = std::move(flux_old);
+  predictor_force_ = std::move(forces);
   steps_ = steps;
   time_ = time;
   dt_ = dt;

@@ -3,8 +3,12 @@
 //     ddt(U) + div(phi, U) - laplacian(nu, U) == -grad(p),
 // with the face flux phi and the pressure of the previous outer iteration (lagged), deferred
 // convection and non-orthogonal corrections from the current U, and Patankar under-relaxation in
-// all but the final outer iteration. The predictor solves it with the lagged grad(p).
+// all but the final outer iteration. The predictor solves it with -grad(p) of the previous outer
+// iteration, except in a step's first outer iteration: there with the force that balanced the
+// previous step's final corrector (grad(p) plus that corrector's splitting residual, pimple.hpp).
 #include "auvloop/engine/fv/pimple.hpp"
+
+#include <algorithm>
 
 namespace auvloop::engine::fv {
 
@@ -27,12 +31,19 @@ Pimple::Momentum Pimple::assemble_momentum(bool final) {
 }
 
 void Pimple::solve_momentum(Momentum& m, StepReport& r, bool first) {
-  std::vector<Eigen::Vector3d> gp = grad(mesh_, p);
+  // The first outer iteration of a step applies the force that balanced the last step's final
+  // corrector (pimple.hpp, predictor_force_); later ones grad(p) of the previous iteration.
+  const bool use_force = first && std::any_of(predictor_force_.begin(), predictor_force_.end(),
+                                              [](const auto& f) { return !f.empty(); });
+  std::vector<Eigen::Vector3d> gp;
+  if (!use_force) gp = grad(mesh_, p);
   std::vector<double> rhs(static_cast<std::size_t>(mesh_.cells()));
   r.outer_residual = 0;
   for (std::size_t i = 0; i < 3; ++i) {
     if (!active_[i]) continue;
-    for (std::size_t c = 0; c < rhs.size(); ++c) rhs[c] = -gp[c][static_cast<Eigen::Index>(i)];
+    const auto& force = predictor_force_[i];
+    for (std::size_t c = 0; c < rhs.size(); ++c)
+      rhs[c] = use_force ? -force[c] : -gp[c][static_cast<Eigen::Index>(i)];
     Matrix eq = m.eq[i];
     eq.add_rhs(mesh_, rhs);
     const auto s = solver_.solve_asymmetric(eq, U.c[i].cells, AsymmetricMethod::bicgstab_jacobi);

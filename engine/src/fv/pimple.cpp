@@ -3,7 +3,8 @@
 //   1. shift the time levels (U, phi); BDF2 from the second step, Euler on the first;
 //   2. for each outer iteration: refresh slip values, assemble momentum with the lagged flux
 //      and pressure, solve the predictor (momentum.cpp);
-//   3. then the pressure correctors (pressure.cpp), the last outer iteration unrelaxed;
+//   3. then the pressure correctors (pressure.cpp), the last outer iteration unrelaxed, and the
+//      force that balances the corrected velocity, for the next step's predictor;
 //   4. Courant number, continuity error, divergence checks; on failure restore the last good
 //      fields and throw DivergenceError naming where and when.
 #include "auvloop/engine/fv/pimple.hpp"
@@ -102,6 +103,7 @@ void Pimple::initialise() {
   }
   for (auto& level : U_old_) level = u;
   for (auto& level : phi_old_) level = phi;
+  for (auto& force : predictor_force_) force.clear();
   steps_ = 0;
   dt_old_ = 0;
 }
@@ -132,6 +134,7 @@ StepReport Pimple::step() {
   const auto phi_good = phi;
   const auto old_good = U_old_;
   const auto phi_old_good = phi_old_;
+  const auto force_good = predictor_force_;
   U_old_[1] = U_old_[0];
   for (std::size_t i = 0; i < 3; ++i) U_old_[0][i] = U.c[i].cells;
   phi_old_[1] = phi_old_[0];
@@ -156,6 +159,7 @@ StepReport Pimple::step() {
       t0 = std::chrono::steady_clock::now();
       for (int corr = 0; corr < settings_.pressure_correctors; ++corr)
         correct_pressure(m, r, outer == 1 && corr == 0, final);
+      store_predictor_force(m);
       r.seconds_pressure += seconds_since(t0);
       r.outer_iterations = outer;
       // Converged outer loop: momentum's initial residual of this iteration is small enough.
@@ -177,6 +181,7 @@ StepReport Pimple::step() {
     phi = phi_good;
     U_old_ = old_good;
     phi_old_ = phi_old_good;
+    predictor_force_ = force_good;
     throw DivergenceError(
         fmt::format("step {} (t = {:.6g} s) diverged; fields of t = {:.6g} s "
                     "kept: {}",

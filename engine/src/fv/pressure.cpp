@@ -194,4 +194,23 @@ void Pimple::correct_pressure(const Momentum& m, StepReport& r, bool first, bool
   }
 }
 
+// The predictor force (pimple.hpp): (H(U) - A U) / V per active component with the equation of
+// the last corrector. With U_k = HbyA(U_{k-1}) - D grad(p) this is grad(p) + N (U_{k-1} - U_k) / V:
+// the pressure gradient plus the part of H that lagged one corrector behind.
+void Pimple::store_predictor_force(const Momentum& m) {
+  const auto n = static_cast<std::size_t>(mesh_.cells());
+  std::vector<double> h(n);
+  for (std::size_t i = 0; i < 3; ++i) {
+    auto& force = predictor_force_[i];
+    if (!active_[i]) {
+      force.clear();
+      continue;
+    }
+    m.eq[i].h_operator(mesh_, U.c[i].cells, h);
+    force.resize(n);
+    for (std::size_t c = 0; c < n; ++c)
+      force[c] = (h[c] - m.eq[i].diag[c] * U.c[i].cells[c]) / mesh_.volume(static_cast<int>(c));
+  }
+}
+
 }  // namespace auvloop::engine::fv

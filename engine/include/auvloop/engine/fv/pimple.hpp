@@ -111,6 +111,7 @@ class Pimple {
   Momentum assemble_momentum(bool final);
   void solve_momentum(Momentum& m, StepReport& r, bool first);
   void correct_pressure(const Momentum& m, StepReport& r, bool first, bool final);
+  void store_predictor_force(const Momentum& m);
   void apply_slip();
   [[nodiscard]] std::vector<double> face_flux(const std::array<std::vector<double>, 3>& u) const;
   void check(const StepReport& r) const;
@@ -132,6 +133,13 @@ class Pimple {
   // every step (the skewness-corrected interpolation costs gradients; once per step, not per
   // corrector).
   std::array<std::vector<double>, 2> U_old_flux_;
+  // The force per unit volume that balances the last corrector's momentum equation at its
+  // velocity U: (H(U) - A U) / V = grad(p) + N (U_before - U) / V, N the off-diagonal part, whose
+  // H(U) lags one corrector (PISO's splitting residual). A step's first predictor applies it in
+  // place of grad(p): with grad(p) alone the predictor answers that residual fully implicitly,
+  // which on stretched cells amplifies a streamwise pressure wave every step (docs/cfd.md,
+  // "Predictor force"). Empty before the first step (grad(p) then); per active component.
+  std::array<std::vector<double>, 3> predictor_force_;
   double time_ = 0;
   int steps_ = 0;
   double dt_ = 0;      // this step's time step
