@@ -47,14 +47,11 @@ TEST(FV_SUITE, CavityRe100Ghia) {
 TEST(FV_SUITE, CavityRe1000Ghia) {
   run("cavity-re1000");
 }
-// Schaefer-Turek 2D-1: the full case (Richardson estimates from m = 16, 24, 32 against the
-// published intervals, about 1.5-2 minutes) passes since the skewness corrections; 2D-2: only the
-// CI-sized regression check, the full case does not pass yet (docs/cfd.md, "Schaefer-Turek").
+// Schaefer-Turek 2D-1 (full: Richardson estimates from m = 16, 24, 32 against the published
+// intervals, 1.5-3 minutes) and 2D-2 (full: m = 32 against the intervals, 4-8 minutes).
 TEST(FV_SUITE, SchaeferTurek2d1) {
   run("schaefer-turek-2d1");
 }
-#ifndef AUVLOOP_FULL_VALIDATION
 TEST(FV_SUITE, SchaeferTurek2d2Shedding) {
   run("schaefer-turek-2d2");
 }
-#endif

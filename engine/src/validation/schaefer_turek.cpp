@@ -4,14 +4,19 @@
 // 2D-1: Um = 0.3 m/s, Re = 20, steady (reached by pseudo-time marching, Euler).
 // 2D-2: Um = 1.5 m/s, Re = 100, periodic vortex shedding (BDF2, fixed dt).
 // Reference intervals: shared/reference/validation-data.md, section 2.
-// Forces are integrated over the cylinder faces: wall pressure p_w S_f and viscous
-// nu dU/dn_w |S_f|, both from the second-order two-cell wall stencil (wall_stencil.hpp).
+// Forces: fv::patch_force, the wall fluxes the solver itself balances (boundary pressure, one-sided
+// (U_P - U_w) / dn shear), as OpenFOAM's forces function object. A "more accurate" two-cell
+// parabola for dU/dn made cD converge at first order from above (5.669 / 5.640 / 5.626 on
+// m = 16 / 24 / 32 against 5.582 / 5.579 / 5.579, on OpenFOAM's field as on auvloop's:
+// bench/openfoam_cylinder.md): the O(h^2) error of the near-wall cell values is not smooth, and
+// dividing it by the wall distance leaves O(h). dp: wall pressures from the two-cell stencil.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <memory>
 #include <numbers>
 
+#include "auvloop/engine/fv/forces.hpp"
 #include "auvloop/engine/fv/pimple.hpp"
 #include "auvloop/engine/validation.hpp"
 #include "auvloop/mesher/cylinder_grid.hpp"
@@ -19,19 +24,28 @@
 
 namespace auvloop::engine::validation {
 
+mesher::CylinderChannelSpec cylinder_spec(const ChannelGrid& g) {
+  const auto times_m = [&](double f) { return static_cast<int>(std::lround(f * g.m)); };
+  mesher::CylinderChannelSpec spec;
+  spec.cells_per_side = g.m;
+  spec.radial_cells = times_m(g.radial_cells_per_side);
+  spec.radial_ratio = g.radial_ratio;
+  spec.downstream_cells = times_m(g.downstream_cells_per_side);
+  spec.downstream_ratio = g.downstream_ratio;
+  return spec;
+}
+
 namespace {
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// The DFG channel on the O-grid with m cells per side of the O-grid's rectangle, the parabolic
+// The DFG channel on the cylinder grid `g`, the parabolic
 // inflow of peak speed Um, no-slip walls and cylinder, p = 0 at the outlet.
 class Channel {
  public:
-  Channel(int m, double Um, const fv::PimpleSettings& s) : Um_(Um) {
-    spec_.cells_per_side = m;
-    spec_.radial_cells = m / 2;
-    spec_.downstream_cells = 2 * m;
+  Channel(const ChannelGrid& g, double Um, const fv::PimpleSettings& s)
+      : spec_(cylinder_spec(g)), Um_(Um) {
     grid_ = mesher::cylinder_channel(spec_);
     mesh_ = std::make_unique<fv::Mesh>(grid_);
     flow_ = std::make_unique<fv::Pimple>(*mesh_, s);
@@ -59,8 +73,10 @@ class Channel {
   // Turns the cylinder wall at surface speed `speed` (counter-clockwise; 0 restores no-slip).
   void spin(double speed);
 
-  // Drag and lift coefficients and dp = p(front) - p(back) of the current field.
+  // Drag and lift coefficients of the current field.
   void measure(CylinderResult& r) const;
+  // dp = p(front) - p(back) on the cylinder of the current field.
+  void measure_pressure_difference(CylinderResult& r) const;
   // Recirculation length behind the cylinder (m); 0 if u does not change sign.
   double recirculation_length() const;
 
@@ -88,29 +104,19 @@ void Channel::spin(double speed) {
 }
 
 void Channel::measure(CylinderResult& r) const {
-  const auto& p = flow_->p;
-  const auto& U = flow_->U;
-  const auto gp = fv::grad(*mesh_, p);
-  const std::array<std::vector<Eigen::Vector3d>, 3> gU{
-      fv::grad(*mesh_, U.c[0]), fv::grad(*mesh_, U.c[1]), fv::grad(*mesh_, U.c[2])};
-  Eigen::Vector3d force = Eigen::Vector3d::Zero();
-  std::vector<double> pw;
-  for (const auto& w : cylinder_) {
-    const double pf =
-        wall_extrapolation(w, on_normal(p.cells, gp, w.P, w.tP), on_normal(p.cells, gp, w.Q, w.tQ));
-    pw.push_back(pf);
-    Eigen::Vector3d dudn;
-    for (std::size_t k = 0; k < 3; ++k)
-      dudn[static_cast<Eigen::Index>(k)] =
-          wall_derivative(w, 0.0, on_normal(U.c[k].cells, gU[k], w.P, w.tP),
-                          on_normal(U.c[k].cells, gU[k], w.Q, w.tQ));
-    const Eigen::Vector3d& S = mesh_->area(w.face);
-    force += pf * S + flow_->settings().nu * dudn * S.norm();
-  }
-  force /= spec_.thickness;
+  const Eigen::Vector3d force = fv::patch_force(*flow_, "cylinder").total() / spec_.thickness;
   const double D = 2 * spec_.radius, q = 0.5 * ubar() * ubar() * D;
   r.cd = force.x() / q;
   r.cl = force.y() / q;
+}
+
+void Channel::measure_pressure_difference(CylinderResult& r) const {
+  const auto& p = flow_->p;
+  const auto gp = fv::grad(*mesh_, p);
+  std::vector<double> pw;
+  for (const auto& w : cylinder_)
+    pw.push_back(wall_extrapolation(w, on_normal(p.cells, gp, w.P, w.tP),
+                                    on_normal(p.cells, gp, w.Q, w.tQ)));
   r.dp = wall_pressure_at(pw, std::numbers::pi) - wall_pressure_at(pw, 0.0);
 }
 
@@ -187,12 +193,12 @@ fv::PimpleSettings settings(double dt) {
 }
 }  // namespace
 
-CylinderResult schaefer_turek_2d1(int cells_per_side, double dt) {
+CylinderResult schaefer_turek_2d1(const ChannelGrid& g, double dt) {
   const auto t_start = std::chrono::steady_clock::now();
   fv::PimpleSettings s = settings(dt);
   s.bdf2 = false;  // pseudo-time marching to the steady state
   s.max_courant = 1e3;
-  Channel ch(cells_per_side, 0.3, s);
+  Channel ch(g, 0.3, s);
   auto& flow = ch.flow();
   CylinderResult r;
   r.cells = ch.mesh().cells();
@@ -206,6 +212,7 @@ CylinderResult schaefer_turek_2d1(int cells_per_side, double dt) {
     if (r.final_change < 1e-6) break;
   }
   ch.measure(r);
+  ch.measure_pressure_difference(r);
   r.la = ch.recirculation_length();
   r.seconds = seconds_since(t_start);
   return r;
@@ -234,22 +241,25 @@ double peak(const std::vector<double>& x) {
 }
 }  // namespace
 
-SheddingResult schaefer_turek_2d2(int cells_per_side, double dt, double end_time,
-                                  int measured_periods) {
+SheddingResult schaefer_turek_2d2(const SheddingCase& k) {
   const auto t_start = std::chrono::steady_clock::now();
+  const double dt = k.dt;
   fv::PimpleSettings s = settings(dt);
-  s.outer_iterations = 2;
+  s.outer_iterations = k.outer_iterations;
+  s.convection = k.convection;
   s.max_courant = 20;
-  Channel ch(cells_per_side, 1.5, s);
+  Channel ch(k.grid, 1.5, s);
   auto& flow = ch.flow();
   SheddingResult r;
   r.cells = ch.mesh().cells();
-  std::vector<double> t, cd, cl;
+  auto& t = r.t;
+  auto& cd = r.cd;
+  auto& cl = r.cl;
   // Shedding grows from round-off and the channel's asymmetry over seconds; a short spin of
   // the cylinder (surface speed Ubar / 2 for the first 0.2 s) starts it at once.
   const double kick = 0.2;
   ch.spin(0.5 * ch.ubar());
-  while (flow.time() < end_time - 0.5 * dt) {
+  while (flow.time() < k.end_time - 0.5 * dt) {
     if (flow.time() >= kick && flow.time() < kick + dt) ch.spin(0.0);
     const auto rep = flow.step();
     r.max_courant = std::max(r.max_courant, rep.max_courant);
@@ -263,6 +273,7 @@ SheddingResult schaefer_turek_2d2(int cells_per_side, double dt, double end_time
   // The last `measured_periods` whole periods of cL.
   const auto up = upward_crossings(t, cl);
   r.seconds = seconds_since(t_start);
+  const int measured_periods = k.measured_periods;
   if (static_cast<int>(up.size()) < measured_periods + 2) return r;  // no (settled) shedding
   const double t0 = up[up.size() - 1 - static_cast<std::size_t>(measured_periods)];
   const double t1 = up.back();

@@ -10,6 +10,9 @@
 #include <string>
 #include <vector>
 
+#include "auvloop/engine/fv/operators.hpp"
+#include "auvloop/mesher/cylinder_grid.hpp"
+
 namespace auvloop::engine::validation {
 
 struct Row {
@@ -69,16 +72,30 @@ struct TaylorGreenRun {
 TaylorGreenRun taylor_green(int n, int steps, double end_time, double nu);
 double l2_difference(const TaylorGreenRun& a, const TaylorGreenRun& b);
 
-// Schaefer-Turek 2D-1 (steady, Re = 20) on the cylinder grid with `cells_per_side` cells per
-// side of the O-grid's square box (half as many radially, twice as many downstream), pseudo-time
-// step dt (0.008 s runs up to m = 32; m = 48 needs less).
+// The Schaefer-Turek cylinder grid (mesher::cylinder_channel) as a function of one refinement
+// parameter m: m cells per side of the O-grid's square box (4 m round the cylinder), the other
+// counts proportional to m with fixed gradings, so that refining m refines everywhere alike.
+// The defaults resolve the Re = 100 wall layer and near wake (docs/cfd.md, "Schaefer-Turek 2D-2").
+struct ChannelGrid {
+  int m = 32;
+  double radial_cells_per_side = 1;      // cylinder to box: radial_cells_per_side x m cells,
+  double radial_ratio = 8;               //   graded outermost / innermost = radial_ratio
+  double downstream_cells_per_side = 4;  // box to outlet: downstream_cells_per_side x m cells,
+  double downstream_ratio = 6;           //   graded last / first = downstream_ratio
+};
+
+// The mesher's specification of that grid.
+mesher::CylinderChannelSpec cylinder_spec(const ChannelGrid& g);
+
+// Schaefer-Turek 2D-1 (steady, Re = 20) on the grid `g` by pseudo-time marching (Euler) with
+// step dt until max |du/dt| < 1e-6 1/s.
 struct CylinderResult {
   int cells = 0, steps = 0;
   double final_change = 0;
   double cd = 0, cl = 0, dp = 0, la = 0;  // drag and lift coefficients, p difference, L_a (m)
   double seconds = 0;
 };
-CylinderResult schaefer_turek_2d1(int cells_per_side, double dt);
+CylinderResult schaefer_turek_2d1(const ChannelGrid& g, double dt);
 
 // Schaefer-Turek 2D-2 (Re = 100, periodic shedding) from rest to end_time with BDF2 at fixed dt;
 // St, cD max and cL max over the last `measured_periods` periods of cL (upward crossings of its
@@ -90,8 +107,16 @@ struct SheddingResult {
   double shedding_onset = 0;  // time of the first upward crossing of cL (s)
   double max_courant = 0;
   double seconds = 0;
+  std::vector<double> t, cd, cl;  // the histories, one sample per time step
 };
-SheddingResult schaefer_turek_2d2(int cells_per_side, double dt, double end_time,
-                                  int measured_periods);
+struct SheddingCase {
+  ChannelGrid grid;
+  double dt = 0.002;      // s
+  double end_time = 4.0;  // s
+  int measured_periods = 3;
+  int outer_iterations = 2;  // PIMPLE outer iterations per step
+  fv::Convection convection = fv::Convection::van_leer_skew;
+};
+SheddingResult schaefer_turek_2d2(const SheddingCase& c);
 
 }  // namespace auvloop::engine::validation
