@@ -136,7 +136,8 @@ def steady(case, um, time, verbose=True):
         print(f"forces FO:     cD {tot[0] / q:.5f} (pressure {pre[0] / q:.5f}, "
               f"viscous {vis[0] / q:.5f})  cL {tot[1] / q:.5f} (pressure {pre[1] / q:.5f}, "
               f"viscous {vis[1] / q:.5f})")
-    # Own evaluation on the same field, as auvloop's (engine/src/validation/wall_stencil.hpp):
+    # Two-cell wall stencil on the same field (auvloop's force evaluation before session 4; its dp
+    # evaluation still, engine/src/validation/wall_stencil.hpp):
     # each wall face sees its cell P and the neighbour Q of P furthest along the normal; values
     # moved onto the normal with their cell gradients; dU/dn from the parabola through U_wall = 0,
     # U_P, U_Q and p_wall by linear extrapolation of p_P and p_Q.
@@ -194,7 +195,7 @@ def steady(case, um, time, verbose=True):
     cl = (Fp[1] + Fv[1]) / q
     if not verbose:
         return fo, (cd, cl), (Fp[0] / q, Fv[0] / q)
-    print(f"auvloop-like: cD {cd:.5f} (pressure {Fp[0] / q:.5f}, viscous {Fv[0] / q:.5f})"
+    print(f"two-cell stencil: cD {cd:.5f} (pressure {Fp[0] / q:.5f}, viscous {Fv[0] / q:.5f})"
           f"  cL {cl:.5f} (pressure {Fp[1] / q:.5f}, viscous {Fv[1] / q:.5f})")
     print(f"dp (wall-extrapolated, linear in angle) {wall_p(math.pi) - wall_p(0.0):.5f}")
 
@@ -257,9 +258,9 @@ def instants(case, um, times):
         fo, st, split = steady(case, um, t, verbose=False)
         dd.append(st[0] - fo[0])
         dl.append(st[1] - fo[1])
-        print(f"t {t}: cD FO {fo[0]:.4f} auvloop-like {st[0]:.4f} (pressure {split[0]:.4f}, "
-              f"viscous {split[1]:.4f}); cL FO {fo[1]:.4f} auvloop-like {st[1]:.4f}")
-    print(f"auvloop-like minus FO over {len(times)} times: cD mean {sum(dd) / len(dd):+.4f} "
+        print(f"t {t}: cD FO {fo[0]:.4f} stencil {st[0]:.4f} (pressure {split[0]:.4f}, "
+              f"viscous {split[1]:.4f}); cL FO {fo[1]:.4f} stencil {st[1]:.4f}")
+    print(f"stencil minus FO over {len(times)} times: cD mean {sum(dd) / len(dd):+.4f} "
           f"(min {min(dd):+.4f}, max {max(dd):+.4f}), cL max |diff| {max(abs(v) for v in dl):.4f}")
 
 

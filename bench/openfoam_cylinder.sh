@@ -12,8 +12,9 @@
 # Gauss linear corrected Laplacians.
 #   2d1: Um = 0.3, simpleFoam (SIMPLEC) to the steady state; prints cD, cL with their pressure and
 #        viscous parts from the forces function object (wall value of p = wall-cell value, du/dn
-#        one-sided first order) and from an evaluation like auvloop's (p extrapolated to the wall
-#        with the cell gradient, du/dn second order), and dp = p(0.15, 0.2) - p(0.25, 0.2).
+#        one-sided; auvloop's fv::patch_force is the same evaluation) and from the two-cell wall
+#        stencil (p and du/dn from the wall cell and the next one: converges at first order from
+#        above, docs/cfd.md), and dp = p(0.15, 0.2) - p(0.25, 0.2) (wall-extrapolated).
 #   2d2: Um = 1.5, pimpleFoam, backward, dt = 0.002, 2 outer / 2 pressure / 1 non-orthogonal
 #        correctors, to END s (default 6); the cylinder spins at Ubar / 2 for the first 0.2 s (as
 #        auvloop's kick); prints St, cD max / mean / min, cL max / min over the last 3 periods
