@@ -2,6 +2,9 @@
 // Unit checks of the PIMPLE solver: thread-count independence to the bit, mass conservation of
 // the corrected fluxes, and the divergence diagnosis.
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
@@ -10,6 +13,7 @@
 #include "auvloop/engine/fv/pimple.hpp"
 #include "auvloop/mesher/generators.hpp"
 #include "couette_flow.hpp"
+#include "temp_dir.hpp"
 
 using namespace auvloop;
 using engine::fv::Pimple;
@@ -92,32 +96,73 @@ TEST(FvPimple, CorrectedFluxesConserveMassInEveryCell) {
     EXPECT_LT(std::abs(d[static_cast<std::size_t>(c)] * mesh.volume(c)), 1e-12) << c;
 }
 
+// The lid-driven cavity on 24 x 24 cells with settings `s` (lid 1 m/s), initialised.
+struct LidCavity {
+  explicit LidCavity(const engine::fv::PimpleSettings& s)
+      : grid(cavity(24, true)), mesh(grid), flow(mesh, s) {
+    for (const auto& patch : grid.patches)
+      if (patch.type == mesher::PatchType::wall) flow.U.fix(mesh, patch.name, {0, 0, 0});
+    flow.U.fix(mesh, "lid", {1, 0, 0});
+    flow.initialise();
+  }
+  mesher::Grid grid;
+  engine::fv::Mesh mesh;
+  Pimple flow;
+};
+
+std::string divergence_message(Pimple& flow) {
+  try {
+    flow.step();
+  } catch (const engine::fv::DivergenceError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no divergence reported";
+  return "";
+}
+
 TEST(FvPimple, DivergenceNamesStepAndCellAndKeepsTheLastGoodFields) {
   // A Courant limit of 0.5 with dt = 0.05 s on 1/24 m cells at 1 m/s (Co about 1.2): the first
-  // step exceeds it; the fields must be those before the step.
-  const auto grid = cavity(24, true);
-  const engine::fv::Mesh mesh(grid);
+  // step exceeds it; the fields must be those before the step, in memory and in the divergence
+  // directory.
+  const test::TempDir tmp;
   engine::fv::PimpleSettings s;
   s.nu = 0.01;
   s.dt = 0.05;
   s.max_courant = 0.5;
-  Pimple flow(mesh, s);
-  for (const auto& patch : grid.patches)
-    if (patch.type == mesher::PatchType::wall) flow.U.fix(mesh, patch.name, {0, 0, 0});
-  flow.U.fix(mesh, "lid", {1, 0, 0});
-  flow.initialise();
+  s.divergence_directory = tmp.path() / "diverged";
+  LidCavity c(s);
+  auto& flow = c.flow;
   const auto before = flow.U.c[0].cells;
-  try {
-    flow.step();
-    FAIL() << "no divergence reported";
-  } catch (const engine::fv::DivergenceError& e) {
-    const std::string what = e.what();
-    EXPECT_NE(what.find("step 1"), std::string::npos) << what;
-    EXPECT_NE(what.find("Courant number"), std::string::npos) << what;
-    EXPECT_NE(what.find("in cell"), std::string::npos) << what;
-  }
+  const std::string what = divergence_message(flow);
+  std::printf("%s\n", what.c_str());
+  EXPECT_NE(what.find("step 1"), std::string::npos) << what;
+  EXPECT_NE(what.find("Courant number"), std::string::npos) << what;
+  EXPECT_NE(what.find("in cell"), std::string::npos) << what;
+  EXPECT_NE(what.find("last-good.checkpoint"), std::string::npos) << what;
   EXPECT_EQ(flow.U.c[0].cells, before);
   EXPECT_EQ(flow.steps(), 0);
+  EXPECT_TRUE(std::filesystem::exists(s.divergence_directory / "last-good.pvd"));
+  // The checkpoint holds the restored fields.
+  LidCavity restarted(s);
+  restarted.flow.U.c[0].cells.assign(before.size(), 7.0);
+  restarted.flow.read_checkpoint(s.divergence_directory / "last-good.checkpoint");
+  EXPECT_EQ(restarted.flow.U.c[0].cells, before);
+}
+
+TEST(FvPimple, ALinearSolveThatFailsNamesItsEquationAndCell) {
+  // A tolerance no Krylov solver reaches: the first solve fails; the message says which.
+  engine::fv::PimpleSettings s;
+  s.nu = 0.01;
+  s.dt = 0.01;
+  s.tolerance = 1e-300;
+  s.pressure_solver = engine::fv::SymmetricMethod::cg_dic;
+  LidCavity c(s);
+  const auto before = c.flow.p.cells;
+  const std::string what = divergence_message(c.flow);
+  std::printf("%s\n", what.c_str());
+  EXPECT_NE(what.find("momentum equation Ux"), std::string::npos) << what;
+  EXPECT_NE(what.find("largest residual in cell"), std::string::npos) << what;
+  EXPECT_EQ(c.flow.p.cells, before);
 }
 
 TEST(FvPimple, CouetteFlowIsExactAndGivesTheWallShear) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <fmt/format.h>
 #include <Eigen/CholmodSupport>
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCore>
@@ -147,8 +148,10 @@ SolveStats iterate(Solver& solver, const Sparse& A, const std::vector<double>& s
   s.iterations = static_cast<int>(solver.iterations());
   s.final_residual = solver.error();
   if (solver.info() != Eigen::Success && !(solver.error() < 1e3 * tolerance))
-    throw std::runtime_error("linear solver did not converge: relative residual " +
-                             std::to_string(solver.error()));
+    throw std::runtime_error(
+        fmt::format("Eigen Krylov solver did not converge in {} iterations: relative residual "
+                    "{:.3g} (tolerance {:.3g})",
+                    solver.iterations(), solver.error(), tolerance));
   return s;
 }
 }  // namespace

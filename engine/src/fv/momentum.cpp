@@ -9,6 +9,11 @@
 #include "auvloop/engine/fv/pimple.hpp"
 
 #include <algorithm>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "diagnosis.hpp"
 
 namespace auvloop::engine::fv {
 
@@ -46,7 +51,14 @@ void Pimple::solve_momentum(Momentum& m, StepReport& r, bool first) {
       rhs[c] = use_force ? -force[c] : -gp[c][static_cast<Eigen::Index>(i)];
     Matrix eq = m.eq[i];
     eq.add_rhs(mesh_, rhs);
-    const auto s = solver_.solve_asymmetric(eq, U.c[i].cells, AsymmetricMethod::bicgstab_jacobi);
+    SolveStats s;
+    try {
+      s = solver_.solve_asymmetric(eq, U.c[i].cells, AsymmetricMethod::bicgstab_jacobi);
+    } catch (const std::runtime_error& e) {
+      throw std::runtime_error(fmt::format("momentum equation U{}: {}; largest residual in {}",
+                                           "xyz"[i], e.what(),
+                                           largest_residual_at(mesh_, eq, U.c[i].cells)));
+    }
     if (first) r.momentum_residual = std::max(r.momentum_residual, s.initial_residual);
     r.outer_residual = std::max(r.outer_residual, s.initial_residual);
     U.c[i].update_boundary(mesh_);

@@ -17,6 +17,9 @@
 
 #include <fmt/format.h>
 
+#include "auvloop/engine/fv/output.hpp"
+#include "diagnosis.hpp"
+
 namespace auvloop::engine::fv {
 
 namespace {
@@ -183,9 +186,8 @@ StepReport Pimple::step() {
     phi_old_ = phi_old_good;
     predictor_force_ = force_good;
     throw DivergenceError(
-        fmt::format("step {} (t = {:.6g} s) diverged; fields of t = {:.6g} s "
-                    "kept: {}",
-                    r.step, r.time, time_, e.what()));
+        fmt::format("step {} (t = {:.6g} s) diverged: {}; the fields of t = {:.6g} s are kept{}",
+                    r.step, r.time, e.what(), time_, write_last_good()));
   }
   time_ = r.time;
   ++steps_;
@@ -196,21 +198,30 @@ StepReport Pimple::step() {
 void Pimple::check(const StepReport& r) const {
   for (int c = 0; c < mesh_.cells(); ++c) {
     const auto s = static_cast<std::size_t>(c);
-    if (!std::isfinite(p.cells[s]) || !U.cell(c).allFinite()) {
-      const auto& x = mesh_.centre(c);
-      throw std::runtime_error(
-          fmt::format("non-finite velocity or pressure in cell {} at "
-                      "({:.4g}, {:.4g}, {:.4g}) m",
-                      c, x.x(), x.y(), x.z()));
-    }
+    if (!std::isfinite(p.cells[s]) || !U.cell(c).allFinite())
+      throw std::runtime_error("non-finite velocity or pressure in " + cell_at(mesh_, c));
   }
   if (r.max_courant > settings_.max_courant) {
     const auto [co, cell] = courant(mesh_, phi, dt_);
-    const auto& x = mesh_.centre(cell);
-    throw std::runtime_error(
-        fmt::format("Courant number {:.3g} beyond the limit {:.3g} in cell {} "
-                    "at ({:.4g}, {:.4g}, {:.4g}) m",
-                    co, settings_.max_courant, cell, x.x(), x.y(), x.z()));
+    throw std::runtime_error(fmt::format("Courant number {:.3g} beyond the limit {:.3g} in {}", co,
+                                         settings_.max_courant, cell_at(mesh_, cell)));
+  }
+}
+
+// The restored fields to settings.divergence_directory; the clause for the message. A failure to
+// write is reported in the message, not thrown: the divergence is the error to report.
+std::string Pimple::write_last_good() const {
+  const auto& dir = settings_.divergence_directory;
+  if (dir.empty()) return "";
+  try {
+    std::filesystem::create_directories(dir);
+    VtkSeries vtk(dir, "last-good");
+    vtk.write(*this);
+    write_checkpoint(dir / "last-good.checkpoint");
+    return fmt::format(" and written to {} and {}", vtk.pvd().string(),
+                       (dir / "last-good.checkpoint").string());
+  } catch (const std::exception& e) {
+    return fmt::format(" (writing them to {} failed: {})", dir.string(), e.what());
   }
 }
 

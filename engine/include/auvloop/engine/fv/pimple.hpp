@@ -39,8 +39,11 @@ struct PimpleSettings {
   // Fastest measured (docs/cfd.md, "Pressure solver"): cholmod-pcg on 2D grids, cg-amg in 3D,
   // where the Cholesky factor fills in too much; empty means choose by the grid.
   std::optional<SymmetricMethod> pressure_solver;
-  double tolerance = 1e-8;     // relative tolerance of the iterative linear solvers
-  double max_courant = 50;     // a step beyond this stops the run (divergence)
+  double tolerance = 1e-8;  // relative tolerance of the iterative linear solvers
+  double max_courant = 50;  // a step beyond this stops the run (divergence)
+  // On divergence the last good fields are written here (created if missing) as
+  // last-good.vtu / .pvd (ParaView) and last-good.checkpoint (restart); empty: kept in memory.
+  std::filesystem::path divergence_directory;
   double outer_tolerance = 0;  // stop the outer loop once momentum's initial residual is below
 };
 
@@ -61,8 +64,10 @@ struct StepReport {
   double seconds_assembly = 0, seconds_gradient = 0;
 };
 
-// Thrown when a step diverges (NaN, Courant number beyond the limit); the solver's fields are
-// those of the last good step. what() names the step, time, cell and its centre.
+// Thrown when a step diverges (NaN, Courant number beyond the limit, a linear solve that no
+// longer converges); the solver's fields are those of the last good step (also written to
+// settings.divergence_directory when set). what() names the step, time, the equation where a
+// solve failed, the cell and its centre, and the files written.
 struct DivergenceError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
@@ -115,6 +120,7 @@ class Pimple {
   void apply_slip();
   [[nodiscard]] std::vector<double> face_flux(const std::array<std::vector<double>, 3>& u) const;
   void check(const StepReport& r) const;
+  [[nodiscard]] std::string write_last_good() const;
   void adapt_time_step();
   [[nodiscard]] TimeScheme time_scheme() const {
     return {dt_, settings_.bdf2 && steps_ > 0, dt_old_};
