@@ -193,6 +193,12 @@ struct AmgPcg::Hierarchy {
   std::vector<Level> levels;
   Eigen::LLT<Eigen::MatrixXd> coarsest;
 
+  // The rows of every level and the coarsest factor, after new coefficients.
+  void load_coefficients() {
+    for (Level& L : levels) L.load_rows();
+    factorise_coarsest();
+  }
+
   void factorise_coarsest() {
     const Level& L = levels.back();
     Eigen::MatrixXd A = Eigen::MatrixXd::Zero(L.n, L.n);
@@ -307,14 +313,16 @@ int AmgPcg::solve(const Matrix& A, std::span<double> x, double tolerance, int ma
       h_->levels.push_back(std::move(coarse));
     }
     h_->levels.back().agg.clear();
-  } else {
+    h_->load_coefficients();
+  } else if (A.diag != h_->levels[0].diag || A.upper != h_->levels[0].upper) {
+    // New coefficients (not for the later correctors of an outer iteration, which share the
+    // matrix: their setup would give the same bits).
     load_finest(h_->levels[0], mesh_, A);
     for (std::size_t l = 0; l + 1 < h_->levels.size(); ++l) {
       h_->levels[l].restrict_matrix(h_->levels[l + 1]);
     }
+    h_->load_coefficients();
   }
-  for (Level& L : h_->levels) L.load_rows();
-  h_->factorise_coarsest();
 
   // Flexible conjugate gradients: z = M r with M the (nonlinear) K-cycle.
   Level& F = h_->levels[0];

@@ -19,7 +19,8 @@
 //     V-cycle's cost with four-to-one coarsening. It is a nonlinear preconditioner, so the
 //     outer iteration is flexible CG (Polak-Ribiere beta; Notay, SIAM J. Sci. Comput. 22, 2000).
 // The aggregates depend only on the matrix given to the first solve and are kept (the pattern is
-// the grid's and does not change); the coarse coefficients are recomputed on every solve. All
+// the grid's and does not change); the coarse coefficients are recomputed when the matrix has
+// changed since the last solve (the correctors of one outer iteration share one matrix). All
 // loops run in a fixed order, so results do not depend on the thread count.
 #pragma once
 

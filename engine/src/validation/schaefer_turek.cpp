@@ -40,8 +40,8 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// The DFG channel on the cylinder grid `g`, the parabolic
-// inflow of peak speed Um, no-slip walls and cylinder, p = 0 at the outlet.
+// The DFG channel on the cylinder grid `g`, the parabolic inflow of peak speed Um, no-slip walls
+// and cylinder, p = 0 at the outlet.
 class Channel {
  public:
   Channel(const ChannelGrid& g, double Um, const fv::PimpleSettings& s)
