@@ -28,7 +28,7 @@ void put(std::string& out, const T& v) {
   out.append(reinterpret_cast<const char*>(&v), sizeof(T));
 }
 void put(std::string& out, const std::vector<double>& v) {
-  out.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(double));
+  if (!v.empty()) out.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(double));
 }
 
 class Reader {
@@ -52,6 +52,7 @@ class Reader {
   void take(void* to, std::size_t n) {
     if (data_.size() - pos_ < n)
       throw std::runtime_error(fmt::format("checkpoint {}: truncated at byte {}", file_, pos_));
+    if (n == 0) return;  // an empty vector's data() may be null, which memcpy must not see
     std::memcpy(to, data_.data() + pos_, n);
     pos_ += n;
   }
