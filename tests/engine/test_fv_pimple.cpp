@@ -29,6 +29,22 @@ mesher::Grid cavity(int n, bool two_d, bool periodic = false) {
                                "cavity");
 }
 
+// The lid-driven cavity (n cells a side, lid 1 m/s, other walls at rest) with settings `s`,
+// initialised.
+struct LidCavity {
+  explicit LidCavity(const engine::fv::PimpleSettings& s, int n = 24, bool two_d = true,
+                     bool periodic = false)
+      : grid(cavity(n, two_d, periodic)), mesh(grid), flow(mesh, s) {
+    for (const auto& patch : grid.patches)
+      if (patch.type == mesher::PatchType::wall) flow.U.fix(mesh, patch.name, {0, 0, 0});
+    flow.U.fix(mesh, "lid", {1, 0, 0});
+    flow.initialise();
+  }
+  mesher::Grid grid;
+  engine::fv::Mesh mesh;
+  Pimple flow;
+};
+
 struct Snapshot {
   std::vector<double> u, v, w, p, phi;
 };
@@ -37,8 +53,6 @@ Snapshot run_cavity(int threads, int n, bool two_d, engine::fv::SymmetricMethod 
                     bool periodic = false) {
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                             static_cast<std::size_t>(threads));
-  const auto grid = cavity(n, two_d, periodic);
-  const engine::fv::Mesh mesh(grid);
   engine::fv::PimpleSettings s;
   s.nu = 0.01;
   s.dt = 0.05;
@@ -46,11 +60,8 @@ Snapshot run_cavity(int threads, int n, bool two_d, engine::fv::SymmetricMethod 
   s.relax_u = 0.8;
   s.relax_p = 0.5;
   s.pressure_solver = solver;
-  Pimple flow(mesh, s);
-  for (const auto& patch : grid.patches)
-    if (patch.type == mesher::PatchType::wall) flow.U.fix(mesh, patch.name, {0, 0, 0});
-  flow.U.fix(mesh, "lid", {1, 0, 0});
-  flow.initialise();
+  LidCavity c(s, n, two_d, periodic);
+  auto& flow = c.flow;
   for (int k = 0; k < 3; ++k) flow.step();
   return {flow.U.c[0].cells, flow.U.c[1].cells, flow.U.c[2].cells, flow.p.cells, flow.phi};
 }
@@ -79,36 +90,18 @@ TEST(FvThreads, BitwiseIdenticalForOneAndTwoThreads) {
 TEST(FvPimple, CorrectedFluxesConserveMassInEveryCell) {
   // The exact Cholesky solve makes the final pressure equation hold to round-off, so every
   // cell's net outflow is round-off of the face fluxes (lid speed 1 m/s, faces ~0.1 m^2 / 24).
-  const auto grid = cavity(24, true);
-  const engine::fv::Mesh mesh(grid);
   engine::fv::PimpleSettings s;
   s.nu = 0.01;
   s.dt = 0.05;
   s.pressure_solver = engine::fv::SymmetricMethod::cholmod;
-  Pimple flow(mesh, s);
-  for (const auto& patch : grid.patches)
-    if (patch.type == mesher::PatchType::wall) flow.U.fix(mesh, patch.name, {0, 0, 0});
-  flow.U.fix(mesh, "lid", {1, 0, 0});
-  flow.initialise();
+  LidCavity cavity_flow(s);
+  const auto& mesh = cavity_flow.mesh;
+  auto& flow = cavity_flow.flow;
   for (int k = 0; k < 3; ++k) flow.step();
   const auto d = engine::fv::div(mesh, flow.phi);
   for (int c = 0; c < mesh.cells(); ++c)
     EXPECT_LT(std::abs(d[static_cast<std::size_t>(c)] * mesh.volume(c)), 1e-12) << c;
 }
-
-// The lid-driven cavity on 24 x 24 cells with settings `s` (lid 1 m/s), initialised.
-struct LidCavity {
-  explicit LidCavity(const engine::fv::PimpleSettings& s)
-      : grid(cavity(24, true)), mesh(grid), flow(mesh, s) {
-    for (const auto& patch : grid.patches)
-      if (patch.type == mesher::PatchType::wall) flow.U.fix(mesh, patch.name, {0, 0, 0});
-    flow.U.fix(mesh, "lid", {1, 0, 0});
-    flow.initialise();
-  }
-  mesher::Grid grid;
-  engine::fv::Mesh mesh;
-  Pimple flow;
-};
 
 std::string divergence_message(Pimple& flow) {
   try {
