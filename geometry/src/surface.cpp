@@ -2,6 +2,7 @@
 // Triangulation of the hull and fins, boolean union of the parts, and surface measures.
 #include "auvloop/geometry/surface.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
@@ -240,33 +241,29 @@ SurfaceMesh fin_surface(const FinGeometry& fin, double deflection, SurfaceResolu
   for (std::size_t i = 0; i <= m; ++i) {
     xc[i] = 0.5 * (1 - std::cos(kPi * static_cast<double>(i) / static_cast<double>(m)));
   }
-  // Span stations: the embedded prism, then the exposed planform, with one exactly at the root.
-  std::vector<double> rho;
-  const double r_in = fin.inner_radius(), r_root = set.root_radius();
-  const auto n_embed = static_cast<std::size_t>(std::max(1.0, std::ceil((r_root - r_in) / h)));
-  const auto n_span = static_cast<std::size_t>(std::max(2.0, std::ceil(set.span / h)));
-  for (std::size_t i = 0; i < n_embed; ++i) {
-    rho.push_back(r_in + (r_root - r_in) * static_cast<double>(i) / static_cast<double>(n_embed));
-  }
-  for (std::size_t i = 0; i <= n_span; ++i) {
-    rho.push_back(r_root + set.span * static_cast<double>(i) / static_cast<double>(n_span));
-  }
+  // Span stations between the root face and the tip: per chord point, evenly from its root rho.
+  std::vector<double> root(m + 1);
+  for (std::size_t i = 0; i <= m; ++i) root[i] = fin.root_rho(xc[i]);
+  const double tip = set.tip_radius, longest = tip - *std::min_element(root.begin(), root.end());
+  const auto n_span = static_cast<std::size_t>(std::max(2.0, std::ceil(longest / h)));
   // Loop: leading edge, upper surface aft, trailing edge (one point if sharp), lower surface
   // forward.
   const std::size_t last_upper = sharp ? m - 1 : m;
   std::vector<Loop> loops;
-  for (double r : rho) {
-    Loop loop{fin.point(r, 0.0, 1, deflection)};
-    for (std::size_t i = 1; i <= last_upper; ++i)
-      loop.push_back(fin.point(r, xc[i], 1, deflection));
-    if (sharp) loop.push_back(fin.point(r, 1.0, 1, deflection));
-    for (std::size_t i = last_upper; i >= 1; --i)
-      loop.push_back(fin.point(r, xc[i], -1, deflection));
+  for (std::size_t k = 0; k <= n_span; ++k) {
+    const double t = static_cast<double>(k) / static_cast<double>(n_span);
+    const auto at = [&](std::size_t i, int side) {
+      return fin.point(root[i] + t * (tip - root[i]), xc[i], side, deflection);
+    };
+    Loop loop{at(0, 1)};
+    for (std::size_t i = 1; i <= last_upper; ++i) loop.push_back(at(i, 1));
+    if (sharp) loop.push_back(at(m, 1));
+    for (std::size_t i = last_upper; i >= 1; --i) loop.push_back(at(i, -1));
     loops.push_back(std::move(loop));
   }
   TriangleBuilder tb;
   const auto ids = loft(tb, loops);
-  // Flat root and tip caps: strips between matching upper and lower points.
+  // Root face and flat tip: strips between matching upper and lower points.
   const std::size_t n = loops.front().size();
   auto upper = [&](const std::vector<int>& row, std::size_t i) { return row[i]; };
   auto lower = [&](const std::vector<int>& row, std::size_t i) { return row[n - i]; };
@@ -304,7 +301,7 @@ std::vector<SurfacePart> vehicle_parts(const Vehicle& vehicle,
                       "max_deflection of {:.3g} deg",
                       set.fins[i].name, delta * 180 / kPi, set.max_deflection * 180 / kPi));
     }
-    const FinGeometry fin(set, set.fins[i], vehicle.mass.cb_station);
+    const FinGeometry fin(set, set.fins[i], profile, vehicle.mass.cb_station);
     parts.push_back({set.fins[i].name, fin_surface(fin, delta, res)});
   }
   return parts;

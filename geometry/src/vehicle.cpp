@@ -70,29 +70,35 @@ FinPlacement read_fin(Table t) {
   return f;
 }
 
-void check_fins_embedded(Table t, const FinSetParameters& set, const MyringProfile& profile,
-                         double cb_station) {
-  // The inner end of every fin must lie inside the hull at every allowed deflection, otherwise
-  // hull and fin do not form one closed body.
+void check_fin_roots(Table t, const FinSetParameters& set, const MyringProfile& profile) {
+  // The root face must lie over the hull, below the tip, and clear of the hull at every allowed
+  // deflection (the overset grids resolve the gap; a fin touching the hull would need a junction).
   for (const auto& placement : set.fins) {
-    const FinGeometry fin(set, placement, cb_station);
-    for (double delta : {-set.max_deflection, 0.0, set.max_deflection}) {
-      for (int i = 0; i <= 40; ++i) {
-        for (int side : {-1, 1}) {
-          const Eigen::Vector3d p = fin.point(fin.inner_radius(), i / 40.0, side, delta);
-          const double station = cb_station - p.x();
-          const double rho = std::hypot(p.y(), p.z());
-          if (station < 0 || station > profile.length() || rho >= profile.radius(station)) {
-            t.fail("embed_depth",
-                   fmt::format(
-                       "at a deflection of {:g} deg the inner end of fin \"{}\" leaves the "
-                       "hull near station {:.4f} m (radius {:.4f} m, hull radius {:.4f} m): "
-                       "increase embed_depth or reduce max_deflection",
-                       delta / kDeg, placement.name, station, rho,
-                       station < 0 || station > profile.length() ? 0.0 : profile.radius(station)));
-            return;
-          }
-        }
+    const FinGeometry fin(set, placement, profile,
+                          /*cb_station=*/0.0);  // stations do not depend on it
+    for (double x : {0.0, 1.0}) {
+      const double rho = fin.root_rho(x);
+      if (!(rho < set.tip_radius * (1 - 1e-9))) {
+        t.fail("root_le_station",
+               fmt::format("the {} edge of fin \"{}\" lies {}: its root face (hull radius plus "
+                           "root_gap) cannot be placed",
+                           x == 0 ? "leading" : "trailing", placement.name,
+                           std::isinf(rho) ? "beyond the hull ends"
+                                           : "below the hull surface at the tip radius"));
+        return;
+      }
+    }
+    const int steps = std::max(1, static_cast<int>(std::ceil(set.max_deflection / kDeg)));
+    for (int i = -steps; i <= steps; ++i) {
+      const double delta = set.max_deflection * i / steps;
+      const double clearance = fin.hull_clearance(delta);
+      if (clearance < 0.5 * set.root_gap) {
+        t.fail("root_gap",
+               fmt::format("at a deflection of {:.3g} deg the root of fin \"{}\" comes within "
+                           "{:.3g} mm of the hull (root_gap {:.3g} mm): increase root_gap or "
+                           "reduce max_deflection",
+                           delta / kDeg, placement.name, clearance * 1e3, set.root_gap * 1e3));
+        return;
       }
     }
   }
@@ -117,7 +123,7 @@ FinSetParameters read_fins(Table t, const MyringProfile* profile) {
   s.root_le_station = t.number("root_le_station", Range::positive(), "m");
   s.tip_radius = t.number("tip_radius", Range::positive(), "m");
   s.post_station = t.number("post_station", Range::positive(), "m");
-  s.embed_depth = t.number("embed_depth", Range::non_negative(), "m");
+  s.root_gap = t.number("root_gap", Range::positive(), "m");
   s.max_deflection = t.angle("max_deflection", Range{0, 90, false, true});
   std::set<std::string> names;
   std::set<long> rolls;
@@ -136,16 +142,12 @@ FinSetParameters read_fins(Table t, const MyringProfile* profile) {
     t.fail("tip_radius", fmt::format("must exceed span = {:g} m (the root station would lie at or "
                                      "below the hull axis)",
                                      s.span));
-  } else if (s.embed_depth >= s.root_radius()) {
-    t.fail("embed_depth", fmt::format("must be smaller than the root station radius "
-                                      "tip_radius - span = {:g} m",
-                                      s.root_radius()));
   } else if (profile != nullptr) {
     if (s.root_le_station >= profile->length()) {
       t.fail("root_le_station",
              fmt::format("lies behind the tail end ({:g} m)", profile->length()));
-    } else if (t.has("fin") && !s.fins.empty()) {
-      check_fins_embedded(t, s, *profile, /*cb_station=*/0.0);  // stations do not depend on it
+    } else if (t.has("fin") && !s.fins.empty() && s.root_gap > 0) {
+      check_fin_roots(t, s, *profile);
     }
   }
   return s;

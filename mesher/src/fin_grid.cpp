@@ -26,15 +26,20 @@ void check_spec(const geometry::FinGeometry& fin, const FinGridSpec& s) {
   check(s.trailing_edge_fan >= 1, n, "trailing_edge_fan", "must be at least 1");
   check(s.normal_cells >= 0, n, "normal_cells", "must not be negative (0: derive from growth)");
   check(s.cap_cells >= 0, n, "cap_cells", "must not be negative (0: derive from growth)");
-  check(s.embedded_cells >= 1, n, "embedded_cells", "must be at least 1");
+  check(s.gap_cells >= 1, n, "gap_cells", "must be at least 1");
+  check(s.root_depth > 1.5 * fin.set().root_gap, n, "root_depth",
+        fmt::format("({:.4g} m) must exceed one and a half root gaps ({:.4g} m): the grid must "
+                    "reach through the gap into the hull",
+                    s.root_depth, 1.5 * fin.set().root_gap));
   check(s.span_cells >= 1, n, "span_cells", "must be at least 1");
   check(s.growth >= 1, n, "growth", "must be at least 1");
   check(s.extent > 0, n, "extent", "must be positive");
   check(s.cap_height > 0, n, "cap_height", "must be positive");
   check(s.first_cell > 0, n, "first_cell", "must be positive");
-  const double limit = std::min({s.extent, s.cap_height, fin.set().span});
+  const double limit = std::min({s.extent, s.cap_height, s.root_depth, fin.set().span});
   check(s.first_cell < limit, n, "first_cell",
-        fmt::format("({:.4g} m) must be smaller than extent, cap_height and the span ({:.4g} m)",
+        fmt::format("({:.4g} m) must be smaller than extent, cap_height, root_depth and the span "
+                    "({:.4g} m)",
                     s.first_cell, limit));
 }
 
@@ -106,30 +111,56 @@ SectionLoop section_loop(const geometry::NacaSection& sec, int m, int fan) {
   return loop;
 }
 
-// Stations along the post (rho, m from the hull axis): uniform inside the hull, clustered at
-// the tip from both sides. Returns the stations and the index of the tip.
-std::pair<std::vector<double>, int> span_stations(const geometry::FinGeometry& fin,
-                                                  const FinGridSpec& s) {
-  const double inner = fin.inner_radius(), root = fin.set().root_radius();
-  const double tip = fin.set().tip_radius;
-  auto rho = graded_nodes(inner, root, s.embedded_cells);
-  // Down from the tip: from the tip's first cell, growing by `growth` until the cells reach the
-  // uniform size (tip - root) / span_cells, then uniform to the root. (Stretching span_cells
-  // cells from a y+ first cell alone would leave cells of several centimetres at the root.)
-  const double uniform = (tip - root) / s.span_cells;
-  std::vector<double> down{0.0};
-  for (double h = s.first_cell; h < uniform && down.back() + h < 0.5 * (tip - root); h *= s.growth)
-    down.push_back(down.back() + h);
-  const double rest = (tip - root) - down.back();
+// Distances from one wall, `first` growing by `growth` until the cells reach `uniform`, then
+// uniform, to the middle of a span of `length` (the other half is the mirror image).
+std::vector<double> two_sided_span(double length, double first, double growth, int cells) {
+  const double uniform = length / cells;
+  std::vector<double> half{0.0};
+  for (double h = first; h < uniform && half.back() + h < 0.5 * length; h *= growth)
+    half.push_back(half.back() + h);
+  const double rest = 0.5 * length - half.back();
   const int n_rest = std::max(1, static_cast<int>(std::ceil(rest / uniform - 1e-9)));
-  const double from = down.back();
-  for (int k = 1; k <= n_rest; ++k) down.push_back(from + rest * k / n_rest);
-  for (auto it = down.rbegin() + 1; it != down.rend(); ++it) rho.push_back(tip - *it);
-  const int k_tip = static_cast<int>(rho.size()) - 1;
-  const auto up = s.cap_cells > 0 ? stretched_nodes(0, s.cap_height, s.first_cell, s.cap_cells)
-                                  : grown_nodes(0, s.cap_height, s.first_cell, s.growth);
-  for (std::size_t k = 1; k < up.size(); ++k) rho.push_back(tip + up[k]);
-  return {rho, k_tip};
+  const double from = half.back();
+  for (int k = 1; k <= n_rest; ++k) half.push_back(from + rest * k / n_rest);
+  std::vector<double> all = half;
+  for (auto it = half.rbegin() + 1; it != half.rend(); ++it) all.push_back(length - *it);
+  return all;
+}
+
+// Levels along the post, as offsets: depths below the root face (m), fractions of the span
+// from the root face to the tip (0 to 1), above the tip (m). Each column of the grid places them
+// over its own root point, since the root face follows the hull.
+struct Levels {
+  std::vector<double> below;  // root_depth .. 0 (descending depths below the root face)
+  std::vector<double> span;   // 0 .. 1
+  std::vector<double> above;  // 0 .. cap_height
+  [[nodiscard]] int root() const { return static_cast<int>(below.size()) - 1; }
+  [[nodiscard]] int tip() const { return root() + static_cast<int>(span.size()) - 1; }
+  [[nodiscard]] int last() const { return tip() + static_cast<int>(above.size()) - 1; }
+};
+
+// Depths below the root face: wall cells from first_cell, growing to gap / gap_cells, uniform
+// across the gap and half a gap beyond (the hull lies one gap down at zero deflection, further
+// when turned), then growing to root_depth. The hull grid's fringe round its cells inside the fin
+// reaches two of its layers down from the root face, and this grid's fringe two levels up from
+// the hull; fine uniform levels keep both bands thin so that each finds active donors in the
+// other grid's part of the gap.
+std::vector<double> depths_below_root(const FinGridSpec& s, double gap) {
+  return banded_nodes(s.root_depth, s.first_cell, s.growth, gap / s.gap_cells, 1.5 * gap);
+}
+
+Levels span_levels(const geometry::FinGeometry& fin, const FinGridSpec& s, double longest) {
+  Levels l;
+  const auto down = depths_below_root(s, fin.set().root_gap);
+  l.below.assign(down.rbegin(), down.rend());
+  // Graded on the longest column (the trailing edge's) so that no column's wall cells exceed
+  // first_cell. (Stretching span_cells cells from a y+ first cell alone would leave cells of
+  // several centimetres mid-span.)
+  for (double d : two_sided_span(longest, s.first_cell, s.growth, s.span_cells))
+    l.span.push_back(d / longest);
+  l.above = s.cap_cells > 0 ? stretched_nodes(0, s.cap_height, s.first_cell, s.cap_cells)
+                            : grown_nodes(0, s.cap_height, s.first_cell, s.growth);
+  return l;
 }
 }  // namespace
 
@@ -139,20 +170,30 @@ Grid fin_grid(const geometry::FinGeometry& fin, const FinGridSpec& s) {
   const SectionLoop loop = section_loop(sec, s.chordwise_cells, s.trailing_edge_fan);
   const auto dist = s.normal_cells > 0 ? stretched_nodes(0, s.extent, s.first_cell, s.normal_cells)
                                        : grown_nodes(0, s.extent, s.first_cell, s.growth);
-  // (Named copies, not a structured binding: clang 14 cannot capture one in a lambda.)
-  const auto stations = span_stations(fin, s);
-  const auto& rho = std::get<0>(stations);
-  const int k_tip = std::get<1>(stations);
   const int np = loop.size(), nj = static_cast<int>(dist.size()) - 1;
-  const int nk = static_cast<int>(rho.size()) - 1;
+  std::vector<double> root(static_cast<std::size_t>(np));
+  for (int p = 0; p < np; ++p)
+    root[static_cast<std::size_t>(p)] = fin.root_rho(loop.x[static_cast<std::size_t>(p)]);
   const double tip = fin.set().tip_radius;
+  const Levels levels = span_levels(fin, s, tip - *std::min_element(root.begin(), root.end()));
+  const int k_root = levels.root(), k_tip = levels.tip(), nk = levels.last();
+  // Wall point of line p at level k: the root face's point lowered, a point of the fin, or the
+  // tip's point lifted (the columns below the root and above the tip are prisms).
+  const auto wall_point = [&](int p, int k) -> Eigen::Vector3d {
+    const auto pu = static_cast<std::size_t>(p);
+    const auto on_fin = [&](double rho) { return fin.point(rho, loop.x[pu], loop.side[pu], 0.0); };
+    if (k <= k_root)
+      return on_fin(root[pu]) - levels.below[static_cast<std::size_t>(k)] * fin.span_axis();
+    if (k <= k_tip)
+      return on_fin(root[pu] +
+                    levels.span[static_cast<std::size_t>(k - k_root)] * (tip - root[pu]));
+    return on_fin(tip) + levels.above[static_cast<std::size_t>(k - k_tip)] * fin.span_axis();
+  };
 
   CellAssembler a;
   std::vector<std::pair<int, int>> tag;  // (j, k) of every point, for the patch classifier
-  std::vector<int> index;                // point of line p, layer j, station k
+  std::vector<int> index;                // point of line p, layer j, level k
   for (int k = 0; k <= nk; ++k) {
-    const double r = std::min(rho[static_cast<std::size_t>(k)], tip);
-    const Eigen::Vector3d lift = (rho[static_cast<std::size_t>(k)] - r) * fin.span_axis();
     for (int j = 0; j <= nj; ++j) {
       for (int p = 0; p < np; ++p) {
         const auto pu = static_cast<std::size_t>(p);
@@ -160,10 +201,9 @@ Grid fin_grid(const geometry::FinGeometry& fin, const FinGridSpec& s) {
           index.push_back(index[index.size() - pu + static_cast<std::size_t>(loop.wall[pu])]);
           continue;
         }
-        const Eigen::Vector3d wall = fin.point(r, loop.x[pu], loop.side[pu], 0.0);
         const Vec2& d = loop.dir[pu];
         const Eigen::Vector3d out = d.x() * fin.chord_axis() + d.y() * fin.normal_axis();
-        index.push_back(a.add_point(wall + lift + dist[static_cast<std::size_t>(j)] * out));
+        index.push_back(a.add_point(wall_point(p, k) + dist[static_cast<std::size_t>(j)] * out));
         tag.emplace_back(j, k);
       }
     }
@@ -196,24 +236,27 @@ Grid fin_grid(const geometry::FinGeometry& fin, const FinGridSpec& s) {
   for (int k = 0; k < nk; ++k)
     for (int j = 0; j < nj; ++j)
       for (int p = 0; p < np; ++p) a.add_hex(o_hex(p, j, k));
-  for (int k = k_tip; k < nk; ++k)
+  for (int k = 0; k < nk; ++k) {
+    if (k >= k_root && k < k_tip) continue;  // the fin itself
     for (int m = 0; m < loop.m; ++m) a.add_hex(column_hex(m, k));
+  }
 
   const auto& name = fin.name();
-  return a.build(name, {{name, PatchType::wall}, {name + "_overset", PatchType::overset}},
-                 [&](std::span<const int> f) {
-                   const auto all = [&](auto pred) {
-                     return std::all_of(f.begin(), f.end(), [&](int q) {
-                       return pred(tag[static_cast<std::size_t>(q)]);
-                     });
-                   };
-                   if (all([&](auto t) { return t.first == 0 && t.second <= k_tip; })) return 0;
-                   if (all([&](auto t) { return t.first == nj; }) ||
-                       all([&](auto t) { return t.second == 0; }) ||
-                       all([&](auto t) { return t.second == nk; }))
-                     return 1;
-                   return -1;
-                 });
+  return a.build(
+      name, {{name, PatchType::wall}, {name + "_overset", PatchType::overset}},
+      [&](std::span<const int> f) {
+        const auto all = [&](auto pred) {
+          return std::all_of(f.begin(), f.end(),
+                             [&](int q) { return pred(tag[static_cast<std::size_t>(q)]); });
+        };
+        if (all([&](auto t) { return t.first == 0 && t.second >= k_root && t.second <= k_tip; }))
+          return 0;
+        if (all([&](auto t) { return t.first == nj; }) ||
+            all([&](auto t) { return t.second == 0; }) ||
+            all([&](auto t) { return t.second == nk; }))
+          return 1;
+        return -1;
+      });
 }
 
 Eigen::Isometry3d fin_placement(const geometry::FinGeometry& fin, double deflection) {

@@ -51,6 +51,22 @@ std::vector<double> grown_nodes(double a, double b, double first, double max_rat
   return graded_nodes(a, b, n, 0.5 * (lo + hi));
 }
 
+std::vector<double> banded_nodes(double length, double first, double growth, double band_size,
+                                 double band_end) {
+  if (!(length > 0) || !(first > 0) || !(growth >= 1) || !(band_size > 0)) {
+    throw std::invalid_argument(
+        "banded_nodes: need length > 0, first > 0, growth >= 1, band_size > 0");
+  }
+  std::vector<double> x{0.0};
+  double h = std::min(first, band_size);
+  while (x.back() + 0.5 * h < length) {
+    x.push_back(x.back() + h);
+    h = x.back() < band_end ? std::min(h * growth, band_size) : h * growth;
+  }
+  x.back() = length;
+  return x;
+}
+
 std::vector<double> stretched_nodes(double a, double b, double first, int n) {
   const double length = b - a;
   if (n < 1 || !(length > 0) || !(first > 0) || !(first < length)) {

@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "auvloop/mesher/grid_system.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 #include "auvloop/geometry/myring.hpp"
@@ -9,6 +12,17 @@
 #include "auvloop/mesher/hull_grid.hpp"
 
 namespace auvloop::mesher {
+namespace {
+bool equally_spaced(const std::vector<geometry::FinPlacement>& fins) {
+  std::vector<double> roll;
+  for (const auto& f : fins) roll.push_back(f.roll);
+  std::sort(roll.begin(), roll.end());
+  const double step = 2 * std::numbers::pi / static_cast<double>(roll.size());
+  for (std::size_t i = 1; i < roll.size(); ++i)
+    if (std::abs(roll[i] - roll[i - 1] - step) > 1e-9) return false;
+  return true;
+}
+}  // namespace
 
 std::vector<const Grid*> GridSystem::grids() const {
   std::vector<const Grid*> all{&hull};
@@ -26,9 +40,18 @@ long long GridSystem::total_cells() const {
 GridSystem build_grid_system(const geometry::Vehicle& v, const MeshSettings& s) {
   check_mesh_settings(s, v);
   GridSystem sys;
-  sys.hull = hull_grid(geometry::MyringProfile(v.hull), v.mass.cb_station, s.hull);
+  const geometry::MyringProfile profile(v.hull);
+  HullGridSpec hull = s.hull;
+  if (!v.fin_set.fins.empty()) {
+    if (equally_spaced(v.fin_set.fins)) {
+      hull.fins = static_cast<int>(v.fin_set.fins.size());
+      // Roll 0 points up (-z): polar angle -90 deg from +y towards +z.
+      hull.fin_angle = v.fin_set.fins.front().roll - 0.5 * std::numbers::pi;
+    }
+  }
+  sys.hull = hull_grid(profile, v.mass.cb_station, hull);
   for (const auto& placement : v.fin_set.fins) {
-    sys.fin_geometry.emplace_back(v.fin_set, placement, v.mass.cb_station);
+    sys.fin_geometry.emplace_back(v.fin_set, placement, profile, v.mass.cb_station);
     sys.fins.push_back(fin_grid(sys.fin_geometry.back(), s.fin));
   }
   sys.background = background_box(s.background);

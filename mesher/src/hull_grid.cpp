@@ -30,6 +30,9 @@ void check_spec(const geometry::MyringProfile& profile, const HullGridSpec& s) {
   check(s.growth >= 1, "growth", fmt::format("must be at least 1 (got {})", s.growth));
   check(s.rim_clustering >= 1, "rim_clustering", "must be at least 1");
   check(s.rim_fan >= 1, "rim_fan", "must be at least 1");
+  check(s.fin_clustering >= 0 && s.fin_clustering < 1, "fin_clustering", "must be in [0, 1)");
+  check(s.fins == 0 || s.circumferential % s.fins == 0, "circumferential",
+        fmt::format("must be a multiple of the number of fins ({})", s.fins));
   check(s.extent > 0, "extent", "must be positive");
   check(s.first_cell > 0, "first_cell", "must be positive");
   check(s.first_cell < profile.max_radius(), "first_cell",
@@ -155,8 +158,11 @@ Grid hull_grid(const geometry::MyringProfile& profile, double cb_station, const 
       const Vec2 q = lines.point[iu] + dist[static_cast<std::size_t>(j)] * lines.dir[iu];
       index[iu].push_back(static_cast<int>(a.points().size()));
       for (int k = 0; k < (axis ? 1 : nt); ++k) {
-        // Half a step off the cardinal angles: no ring point in a cruciform fin's mid-plane.
-        const double th = 2 * std::numbers::pi * (k + 0.5) / nt;
+        // Half a step off the fin planes: no ring point in a fin's mid-plane.
+        const double xi = s.fin_angle + 2 * std::numbers::pi * (k + 0.5) / nt;
+        const double th =
+            s.fins > 0 ? xi - s.fin_clustering * std::sin(s.fins * (xi - s.fin_angle)) / s.fins
+                       : xi;
         const double r = axis ? 0.0 : q.y();
         a.add_point(Eigen::Vector3d(cb_station - q.x(), r * std::cos(th), r * std::sin(th)));
         layer.push_back(j);

@@ -35,7 +35,7 @@ struct Preset {
   double yplus;
   int nose, body, tail, circumferential, rim_fan;
   double hull_growth, hull_extent;
-  int chordwise, embedded, span, te_fan;
+  int chordwise, span, te_fan;
   double fin_growth, fin_extent;
   double spacing, bg_growth;
 };
@@ -48,9 +48,9 @@ struct Preset {
 // 10,632 instead of 5,696 of 10,864). Coarse and medium grids are for wall functions (y+ 30 and
 // 5 with the all-y+ treatment); fine resolves the viscous sublayer (y+ 1).
 constexpr Preset kPresets[] = {
-    {"coarse", 30, 3, 28, 2, 20, 3, 1.35, 0.2, 8, 2, 5, 6, 1.35, 0.03, 0.07, 1.6},
-    {"medium", 5, 5, 48, 4, 36, 5, 1.25, 0.14, 10, 3, 8, 6, 1.25, 0.03, 0.035, 1.4},
-    {"fine", 1, 8, 96, 6, 56, 8, 1.15, 0.07, 20, 4, 16, 10, 1.2, 0.02, 0.032, 1.15},
+    {"coarse", 30, 3, 28, 2, 20, 3, 1.5, 0.2, 8, 4, 3, 1.6, 0.1, 0.07, 1.8},
+    {"medium", 5, 5, 48, 4, 36, 5, 1.25, 0.14, 10, 8, 6, 1.4, 0.1, 0.035, 1.4},
+    {"fine", 1, 8, 96, 6, 56, 8, 1.15, 0.07, 20, 16, 10, 1.35, 0.1, 0.032, 1.15},
 };
 }  // namespace
 
@@ -81,7 +81,6 @@ MeshSettings mesh_preset(std::string_view name, const geometry::Vehicle& v) {
     s.hull.growth = p.hull_growth;
     s.hull.extent = p.hull_extent;
     s.fin.chordwise_cells = p.chordwise;
-    s.fin.embedded_cells = p.embedded;
     s.fin.span_cells = p.span;
     s.fin.trailing_edge_fan = p.te_fan;
     s.fin.growth = p.fin_growth;
@@ -119,13 +118,15 @@ void read_hull(input::Table t, HullGridSpec& h, bool& first_given) {
   h.rim_clustering =
       t.number_or("rim_clustering", h.rim_clustering, input::Range::closed(1, 2), "");
   read_counts(t, "rim_fan", h.rim_fan, 1);
+  h.fin_clustering =
+      t.number_or("fin_clustering", h.fin_clustering, input::Range{0, 1, false, true}, "");
   t.finish();
 }
 
 void read_fin(input::Table t, FinGridSpec& f, bool& first_given) {
   read_counts(t, "chordwise_cells", f.chordwise_cells, 2);
   read_counts(t, "normal_cells", f.normal_cells, 0);
-  read_counts(t, "embedded_cells", f.embedded_cells, 1);
+  read_counts(t, "gap_cells", f.gap_cells, 1);
   read_counts(t, "span_cells", f.span_cells, 1);
   read_counts(t, "cap_cells", f.cap_cells, 0);
   read_counts(t, "trailing_edge_fan", f.trailing_edge_fan, 1);
@@ -134,6 +135,7 @@ void read_fin(input::Table t, FinGridSpec& f, bool& first_given) {
   f.growth = t.number_or("growth", f.growth, input::Range::closed(1, 3), "");
   f.extent = t.number_or("extent", f.extent, input::Range::positive(), "m");
   f.cap_height = t.number_or("cap_height", f.cap_height, input::Range::positive(), "m");
+  f.root_depth = t.number_or("root_depth", f.root_depth, input::Range::positive(), "m");
   t.finish();
 }
 

@@ -20,7 +20,8 @@ const Vehicle& remus() {
   return v;
 }
 FinGeometry fin(std::size_t i) {
-  return FinGeometry(remus().fin_set, remus().fin_set.fins[i], remus().mass.cb_station);
+  return FinGeometry(remus().fin_set, remus().fin_set.fins[i], MyringProfile(remus().hull),
+                     remus().mass.cb_station);
 }
 }  // namespace
 
@@ -55,7 +56,7 @@ TEST(Surface, HullVolumeConvergesAtSecondOrder) {
 
 TEST(Surface, FinIsClosedOutwardAndConverges) {
   const auto f = fin(0);
-  const double exact = auvloop::test::fin_solid_volume(f);
+  const double exact = auvloop::test::exact_fin(f.set(), MyringProfile(remus().hull)).volume;
   double previous = 0;
   for (double h : {0.004, 0.002}) {
     const auto mesh = fin_surface(f, 0.0, {h});
@@ -74,7 +75,7 @@ TEST(Surface, BluntAndCamberedSectionsAreClosed) {
   FinSetParameters set = remus().fin_set;
   set.section = *NacaSection::parse("NACA 2412");
   set.section.sharp_trailing_edge = false;
-  const FinGeometry f(set, set.fins[1], 0.611);
+  const FinGeometry f(set, set.fins[1], MyringProfile(remus().hull), 0.611);
   const auto defects = inspect(fin_surface(f, 10 * kDeg, {0.005}));
   EXPECT_TRUE(defects.ok()) << defects.describe();
 }

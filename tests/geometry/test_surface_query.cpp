@@ -108,13 +108,13 @@ TEST(SurfaceQuery, RaysHitTheNoseFaceAndTheBody) {
 TEST(SurfaceQuery, FinAgreesWithTheNacaThickness) {
   const auto& set = remus().fin_set;
   for (double delta : {0.0, 20 * kDeg}) {
-    const FinGeometry fin(set, set.fins[1], kCb);
+    const FinGeometry fin(set, set.fins[1], MyringProfile(remus().hull), kCb);
     const SurfaceQuery query(fin_surface(fin, delta, {0.002}));
     std::mt19937 rng(11);
-    std::uniform_real_distribution<double> rho(set.root_radius() - 0.02, set.tip_radius - 0.002),
-        x(0.02, 0.98);
+    std::uniform_real_distribution<double> along(0.0, 1.0), x(0.02, 0.98);
     for (int i = 0; i < 200; ++i) {
-      const double r = rho(rng), xc = x(rng);
+      const double xc = x(rng), lo = fin.root_rho(xc) + 0.002, hi = set.tip_radius - 0.002;
+      const double r = lo + along(rng) * (hi - lo);
       const int side = i % 2 == 0 ? 1 : -1;
       // A point of the analytic surface lies on the triangulation to within the chord sagitta.
       const Eigen::Vector3d on = fin.point(r, xc, side, delta);

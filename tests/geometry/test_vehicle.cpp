@@ -102,8 +102,10 @@ TEST(Vehicle, CrossFieldChecks) {
               HasSubstr("violate I3 <= I1 + I2"));
   EXPECT_THAT(load_error(preset_with("[0.0, 3.45, 0.0]", "[0.1, 3.45, 0.0]")),
               HasSubstr("mass.inertia: the inertia tensor must be symmetric"));
-  EXPECT_THAT(load_error(preset_with("embed_depth = 0.025", "embed_depth = 0.001")),
-              HasSubstr("leaves the hull"));
+  EXPECT_THAT(load_error(preset_with("root_gap = 0.003", "root_gap = 0.09")),
+              HasSubstr("below the hull surface at the tip radius: its root face"));
+  EXPECT_THAT(load_error(preset_with("root_gap = 0.003", "root_gap = 0")),
+              HasSubstr("fins.root_gap: value 0 is out of range"));
   EXPECT_THAT(load_error(preset_with("hub_diameter = 0.0324", "hub_diameter = 0.2")),
               HasSubstr("propeller.hub_diameter: must be smaller than diameter"));
   EXPECT_THAT(load_error(preset_with("section = \"NACA 0012\"", "section = \"NACA 12\"")),

@@ -21,13 +21,14 @@ using ::testing::HasSubstr;
 namespace {
 Grid sample_grid() {
   const auto v = geometry::preset_vehicle("remus100");
-  const geometry::FinGeometry fin(v.fin_set, v.fin_set.fins[1], v.mass.cb_station);
+  const geometry::FinGeometry fin(v.fin_set, v.fin_set.fins[1], geometry::MyringProfile(v.hull),
+                                  v.mass.cb_station);
   FinGridSpec s;
   s.chordwise_cells = 6;
   s.normal_cells = 4;
   s.span_cells = 4;
   s.cap_cells = 2;
-  s.embedded_cells = 1;
+  s.gap_cells = 1;
   s.trailing_edge_fan = 3;
   Grid g = fin_grid(fin, s);
   g.placement = fin_placement(fin, 0.3);

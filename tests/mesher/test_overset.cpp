@@ -91,8 +91,10 @@ Check check(const OversetAssembler& asmb, const Assembly& a, const std::vector<G
 }  // namespace
 
 // Deflections -35 .. 35 deg in 5 deg steps, all fins together: no orphans, donors are active
-// cells, and weights sum to one and reproduce a linear field to round-off.
-void sweep(const char* preset) {
+// cells, and weights sum to one and reproduce a linear field to round-off. Fringe cells whose
+// containing cell in every other grid is not active take fallback stencils (docs/mesher.md, the
+// open defect): their share must not grow past what the grids gave when this was written.
+void sweep(const char* preset, double max_fallback_share) {
   const MeshSettings settings = mesh_preset(preset, remus());
   GridSystem sys = build_grid_system(remus(), settings);
   OversetAssembler asmb(sys, remus());
@@ -108,6 +110,7 @@ void sweep(const char* preset) {
         preset, deg, r.fringe, r.fallbacks, r.farthest_fallback, r.orphans, r.worst_sum,
         r.worst_linear, r.largest_stencil, a.seconds);
     EXPECT_GT(r.fringe, 0) << deg;
+    EXPECT_LE(r.fallbacks, max_fallback_share * r.fringe) << deg;
     EXPECT_EQ(r.orphans, 0) << deg;
     EXPECT_EQ(r.bad_donor_status, 0) << deg;
     EXPECT_LE(r.worst_sum, 1.0) << deg;
@@ -235,10 +238,10 @@ void coverage(const char* preset) {
 #ifdef AUVLOOP_OVERSET_PRESETS
 // Built as test_overset_presets, label slow: the medium and fine presets (0.3 M and 1.3 M cells).
 TEST(OversetSlow, MediumFinSweepHasNoOrphans) {
-  sweep("medium");
+  sweep("medium", 0.12);
 }
 TEST(OversetSlow, FineFinSweepHasNoOrphans) {
-  sweep("fine");
+  sweep("fine", 0.13);
 }
 TEST(OversetSlow, MediumAndFineCellsCoverTheFluid) {
   coverage("medium");
@@ -250,7 +253,7 @@ TEST(OversetSlow, MediumAndFineUpdatesMatchFullAssemblies) {
 }
 #else
 TEST(Overset, CoarseFinSweepHasNoOrphansAndExactLinearInterpolation) {
-  sweep("coarse");
+  sweep("coarse", 0.26);
 }
 
 TEST(Overset, ActiveAndFringeCellsCoverTheFluid) {

@@ -49,8 +49,10 @@ struct FinSetParameters {
   double root_le_station = 0;  // m aft of nose: leading edge at the root station
   double tip_radius = 0;       // m, distance of the fin tip from the hull axis
   double post_station = 0;     // m aft of nose: the fin post (axis of deflection, radial)
-  double embed_depth = 0;      // m the fin solid continues inside the hull below the root station
-  double max_deflection = 0;   // rad, mechanical limit (magnitude)
+  // m, radial clearance between the fin root and the hull along the chord line at zero deflection
+  // (the paper's rudder-hull gap; it only widens as the fin turns, docs/vehicle-file.md)
+  double root_gap = 0;
+  double max_deflection = 0;  // rad, mechanical limit (magnitude)
 
   [[nodiscard]] double root_radius() const { return tip_radius - span; }
 };

@@ -26,6 +26,12 @@ struct BoxPatches {
 // most `max_ratio`; the ratio is solved so that the first cell is exactly `first`.
 std::vector<double> grown_nodes(double a, double b, double first, double max_ratio);
 
+// Nodes from 0 to `length`: cells from `first` growing by `growth`, but no larger than
+// `band_size` until `band_end`, then growing freely (the last cell ends at `length` or beyond by
+// less than half a cell, moved onto it). Resolves a thin gap beside a wall with uniform cells.
+std::vector<double> banded_nodes(double length, double first, double growth, double band_size,
+                                 double band_end);
+
 // n cells from a to b, the first (at a) exactly `first`, sizes in geometric progression (the
 // ratio, above or below one, is solved for). Throws std::invalid_argument when n < 1, b <= a or
 // first is not in (0, b - a).

@@ -28,6 +28,13 @@ struct HullGridSpec {
   double extent = 0.08;          // m, distance from the wall to the outer boundary
   double rim_clustering = 1.06;  // cell growth away from the nose and tail rims along the wall
   int rim_fan = 6;               // lines fanning round each rim (end face to curved hull)
+  // Equally spaced fins (0: none) and the polar angle (rad, from +y towards +z) of the first:
+  // sectors narrow by the factor 1 - fin_clustering at each fin plane and widen between them
+  // (theta = xi - fin_clustering sin(fins (xi - fin_angle)) / fins), so that the hull cells
+  // straddling a fin, and the fringe round them, stay close to it (docs/mesher.md).
+  int fins = 0;
+  double fin_angle = 0;
+  double fin_clustering = 0.5;
 };
 
 // The grid frame is the body frame (origin at CB, x forward); throws std::invalid_argument naming
