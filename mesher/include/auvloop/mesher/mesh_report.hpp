@@ -15,6 +15,7 @@ namespace auvloop::mesher {
 
 struct OversetCounts {
   int active = 0, fringe = 0, hole = 0, orphan = 0;
+  int fallback = 0;  // fringe cells whose donors are a fallback (no active cell contains them)
 };
 
 struct GridReport {
