@@ -870,44 +870,55 @@ Assembly OversetAssembler::update(const Assembly& previous,
   a.fin_deflections = deflections;
   a.cells_visited = 0;
   const double reach_cells = m.settings.overlap_cells + m.settings.fringe_layers + 2;
-  double fin_radius = 0;
+  // The largest centre-to-vertex distance of the cells that can cover a hull or fin cell: a point
+  // lies at most this far from the centre of the covering cell containing it, where that cell's
+  // wall distance is taken.
+  double fin_cell_radius = 0;
   for (const auto& d : m.grids)
-    if (d.fin >= 0) fin_radius = std::max(fin_radius, d.largest_radius);
+    if (d.fin >= 0) fin_cell_radius = std::max(fin_cell_radius, d.largest_radius);
+  const double hull_cell_radius = m.grids[0].largest_radius;  // grid 0 is the hull
+  // Which cells are re-examined (`cells`: their statuses may change) and which kept stencils are
+  // re-checked (`redo`). Each test is a necessary condition for a cell's status to change
+  // (test_overset compares the statuses with full assemblies; the depths of cells outside the
+  // region are kept from the previous assembly, as the region's boundary values):
+  //  - every change lies within reach of a swept fin-grid box (overlap depth plus fringe layers
+  //    and a margin, in the cell's own size): a moved grid's wall holes and the cells it covers
+  //    lie in its box;
+  //  - a hull or fin cell becomes or stops being a hole only inside a fin solid or where a fin
+  //    grid covers it, which needs the fin's wall nearer than its own by the cover band: within
+  //    its slack, plus the covering cell's radius, of the fin solid. Most fin-grid cells and the
+  //    hull's near-wall cells have no slack, so only the swept solids' boxes widened by the reach
+  //    matter to them, not the whole fin-grid boxes. The background has no wall (infinite slack);
+  //  - a fin-grid cell turns with its fin, so it can also change near the hull: inside it, or
+  //    covered by the hull grid within its slack (plus the hull cells' radius) of the hull wall.
+  //    The gap is measured radially at the cell's station, which exceeds the distance to the
+  //    sloping tail by up to 1 / cos of its slope (about 10 % at 25 deg); only the reach makes up
+  //    for that, a margin rather than a bound.
+  // A kept stencil of a hull or background receiver within reach of a swept fin-grid box is
+  // re-checked (`redo`) even where the receiver's status cannot change: a fin grid's active cells
+  // may now contain it and outrank its donor grid.
   std::vector<std::vector<int>> cells(m.grids.size());
   std::vector<std::vector<char>> redo(m.grids.size());
   for (std::size_t g = 0; g < m.grids.size(); ++g) {
     const auto& d = m.grids[g];
     redo[g].assign(static_cast<std::size_t>(d.grid->cells), 0);
-    // A status can change only within reach of the swept boxes (overlap depth plus fringe layers
-    // and a margin, in the cell's own size). A cell can be covered only where another grid's wall
-    // is nearer than its own by the cover band, i.e. within its slack (own wall distance minus
-    // the band) of a fin solid: so besides a swept grid box, a hull or fin cell must lie within
-    // reach plus slack of a swept solid (most fin-grid cells have no slack: only the fin solids'
-    // wall holes and the fringe round them reach them). A fin grid turns with its fin, so its
-    // cells change only as near to the hull or to the other fins.
-    // (The covering grid's wall distance is that of its cell's centre: the slack is widened by
-    // the largest centre-to-corner distance of that grid's cells.)
     const auto& slack = m.slack[g];
     for (int c = 0; c < d.grid->cells; ++c) {
       const auto cu = static_cast<std::size_t>(c);
       const Eigen::Vector3d x = m.body(static_cast<int>(g), c);
       const double reach = reach_cells * d.size[cu];
-      const double by_fin = slack[cu] > 0 ? slack[cu] + fin_radius : 0.0;
-      // `near`: the status may change; `redo` (hull and background receivers): a stencil kept
-      // from the previous assembly is checked against the grids that now may outrank its donor
-      // grid, anywhere within reach of a swept fin-grid box.
-      bool near = false, within_box = false;
+      const double fin_cover_reach = slack[cu] > 0 ? slack[cu] + fin_cell_radius : 0.0;
+      bool near = false, in_swept_box = false;
       for (std::size_t k = 0; k < swept.size(); ++k) {
-        if (static_cast<int>(k) == d.fin) continue;
-        const bool in_box = swept[k].contains(x, reach);
-        within_box = within_box || in_box;
-        near = near || ((d.fin >= 0 || in_box) && swept_solid[k].contains(x, reach + by_fin));
+        if (static_cast<int>(k) == d.fin || !swept[k].contains(x, reach)) continue;
+        in_swept_box = true;
+        near = near || swept_solid[k].contains(x, reach + fin_cover_reach);
       }
-      if (d.fin < 0 && within_box) redo[g][cu] = 1;
+      if (d.fin < 0 && in_swept_box) redo[g][cu] = 1;
       if (d.fin >= 0 && !near) {
         const double station = std::clamp(m.cb_station - x.x(), 0.0, m.profile->length());
-        const double by_hull = slack[cu] > 0 ? slack[cu] + m.grids[0].largest_radius : 0.0;
-        near = std::hypot(x.y(), x.z()) - m.profile->radius(station) < reach + by_hull;
+        const double hull_cover_reach = slack[cu] > 0 ? slack[cu] + hull_cell_radius : 0.0;
+        near = std::hypot(x.y(), x.z()) - m.profile->radius(station) < reach + hull_cover_reach;
       }
       if (near) {
         cells[g].push_back(c);
