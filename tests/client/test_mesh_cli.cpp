@@ -20,6 +20,7 @@ TEST(MeshCli, WritesGridsAndReport) {
   const auto r = run_cli("mesh --preset coarse --fin-deflection 30 --out " + out.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_THAT(r.output, HasSubstr("upper_rudder"));
+  EXPECT_THAT(r.output, HasSubstr("fringe fallback   orphan"));  // the table's columns
   for (const char* f : {"mesh.vtm", "hull.vtu", "hull.agrid", "background.vtu", "mesh-report.json",
                         "port_stern_plane.vtu"})
     EXPECT_TRUE(std::filesystem::exists(out / f)) << f;
