@@ -167,9 +167,9 @@ void register_mesh_command(CLI::App& app, int& exit_code) {
       "non_orthogonality, status 0 active / 1 fringe / 2 hole / 3 orphan, donor_grid),\n"
       "DIR/GRID.agrid (auvloop's binary grids) and DIR/mesh-report.json, and prints the report:\n"
       "cells, smallest volume, worst non-orthogonality and skewness, aspect ratio, estimated y+\n"
-      "of the first cells, active, fringe (with fallback donors: no active cell of another grid\n"
-      "contains them) and orphan counts per grid. Every grid is checked\n"
-      "(closed, positive cells) before anything is written.\n"
+      "of the first cells, active, fringe, fallback (fringe cells whose centre no active cell of\n"
+      "another grid contains: their donors extrapolate) and orphan counts per grid. Every grid is\n"
+      "checked (closed, positive cells) before anything is written.\n"
       "Examples:\n"
       "  auvloop mesh --preset coarse --out out/mesh\n"
       "  auvloop mesh examples/heading-step.toml --fin-deflection 30 --out out/mesh30");
