@@ -285,6 +285,7 @@ TEST(OversetSlow, MediumAndFineCellsCoverTheFluid) {
 }
 TEST(OversetSlow, MediumAndFineUpdatesMatchFullAssemblies) {
   chained_updates("medium", 2);
+  fin_by_fin_updates("medium");
   chained_updates("fine", 1);
 }
 #else
