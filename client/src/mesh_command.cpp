@@ -96,7 +96,7 @@ int mesh_command(const MeshOptions& o) {
       report.grids[g].assembled = true;
       report.grids[g].overset = {
           ga.count(mesher::CellStatus::active), ga.count(mesher::CellStatus::fringe),
-          ga.count(mesher::CellStatus::hole), ga.count(mesher::CellStatus::orphan)};
+          ga.count(mesher::CellStatus::hole), ga.count(mesher::CellStatus::orphan), ga.fallbacks()};
     }
   }
   // Every grid is checked before anything is written: a bad cell stops the command with the
@@ -167,8 +167,9 @@ void register_mesh_command(CLI::App& app, int& exit_code) {
       "non_orthogonality, status 0 active / 1 fringe / 2 hole / 3 orphan, donor_grid),\n"
       "DIR/GRID.agrid (auvloop's binary grids) and DIR/mesh-report.json, and prints the report:\n"
       "cells, smallest volume, worst non-orthogonality and skewness, aspect ratio, estimated y+\n"
-      "of the first cells, active, fringe and orphan counts per grid. Every grid is checked\n"
-      "(closed, positive cells) before anything is written.\n"
+      "of the first cells, active, fringe, fallback (fringe cells whose centre no active cell of\n"
+      "another grid contains: their donors extrapolate) and orphan counts per grid. Every grid is\n"
+      "checked (closed, positive cells) before anything is written.\n"
       "Examples:\n"
       "  auvloop mesh --preset coarse --out out/mesh\n"
       "  auvloop mesh examples/heading-step.toml --fin-deflection 30 --out out/mesh30");

@@ -83,18 +83,18 @@ std::vector<double> cell_non_orthogonality(const Grid& g, const GridGeometry& ge
 std::string report_table(const MeshReport& r) {
   std::string out = fmt::format(
       "mesh report (preset {}, y+ estimated at {:.3g} m/s, nu {:.3g} m^2/s)\n"
-      "{:<24} {:>9} {:>11} {:>9} {:>7} {:>8} {:>13} {:>8} {:>8} {:>8}\n",
+      "{:<24} {:>9} {:>11} {:>9} {:>7} {:>8} {:>13} {:>8} {:>8} {:>8} {:>8}\n",
       r.preset, r.design_speed, r.kinematic_viscosity, "grid", "cells", "min vol m3", "non-orth",
-      "skew", "aspect", "y+ first cell", "active", "fringe", "orphan");
+      "skew", "aspect", "y+ first cell", "active", "fringe", "fallback", "orphan");
   for (const auto& g : r.grids) {
     const std::string yplus =
         g.wall_faces > 0 ? fmt::format("{:.2g}-{:.2g}", g.yplus_min, g.yplus_max) : "-";
     const auto count = [&](int n) { return g.assembled ? fmt::format("{}", n) : std::string("-"); };
-    out +=
-        fmt::format("{:<24} {:>9} {:>11.3e} {:>9.1f} {:>7.2f} {:>8.0f} {:>13} {:>8} {:>8} {:>8}\n",
-                    g.name, g.quality.cells, g.quality.min_volume, g.quality.max_non_orthogonality,
-                    g.quality.max_skewness, g.quality.max_aspect_ratio, yplus,
-                    count(g.overset.active), count(g.overset.fringe), count(g.overset.orphan));
+    out += fmt::format(
+        "{:<24} {:>9} {:>11.3e} {:>9.1f} {:>7.2f} {:>8.0f} {:>13} {:>8} {:>8} {:>8} {:>8}\n",
+        g.name, g.quality.cells, g.quality.min_volume, g.quality.max_non_orthogonality,
+        g.quality.max_skewness, g.quality.max_aspect_ratio, yplus, count(g.overset.active),
+        count(g.overset.fringe), count(g.overset.fallback), count(g.overset.orphan));
   }
   out += fmt::format("total {} cells\n", r.total_cells());
   return out;
@@ -125,6 +125,7 @@ std::string report_json(const MeshReport& r) {
     }
     j["overset"] = g.assembled ? json{{"active", g.overset.active},
                                       {"fringe", g.overset.fringe},
+                                      {"fallback", g.overset.fallback},
                                       {"hole", g.overset.hole},
                                       {"orphan", g.overset.orphan}}
                                : json(nullptr);

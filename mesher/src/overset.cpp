@@ -79,6 +79,7 @@ struct GridData {
   std::vector<KPoint> centres;
   std::unique_ptr<KTree> tree;
   Box local_box;
+  double largest_radius = 0;  // largest distance from a cell centre to one of its points
   int priority = 0;
   int fin = -1;  // index of the fin it belongs to, -1 for hull and background
 
@@ -140,6 +141,17 @@ GridData prepare(const Grid& g, int priority, int fin) {
     d.ids.push_back(static_cast<int>(c));
   }
   for (const auto& p : g.points) d.local_box.add(p);
+  for (int f = 0; f < g.faces(); ++f) {
+    const auto fu = static_cast<std::size_t>(f);
+    for (int k = g.face_offsets[fu]; k < g.face_offsets[fu + 1]; ++k) {
+      const auto& p =
+          g.points[static_cast<std::size_t>(g.face_points[static_cast<std::size_t>(k)])];
+      for (int c : {g.owner[fu], f < g.internal_faces() ? g.neighbour[fu] : -1})
+        if (c >= 0)
+          d.largest_radius = std::max(d.largest_radius,
+                                      (p - d.geo.cell_centre[static_cast<std::size_t>(c)]).norm());
+    }
+  }
   d.tree = std::make_unique<KTree>(
       boost::make_zip_iterator(boost::make_tuple(d.centres.begin(), d.ids.begin())),
       boost::make_zip_iterator(boost::make_tuple(d.centres.end(), d.ids.end())));
@@ -250,6 +262,12 @@ bool linear_weights(const std::vector<Eigen::Vector3d>& xs, const Eigen::Vector3
   w.assign(wv.data(), wv.data() + n);
   return true;
 }
+
+// How much nearer another grid's wall must be for it to cover a cell of this size: the fringe
+// layers plus one and a half sizes (so both grids keep an overlap band).
+double cover_band(const OversetSettings& s, double size) {
+  return (s.fringe_layers + 1.5) * size;
+}
 }  // namespace
 
 struct OversetAssembler::Impl {
@@ -264,6 +282,9 @@ struct OversetAssembler::Impl {
   std::vector<std::vector<double>> depth;      // per grid: distance from holes and outer edge (m)
   std::vector<std::vector<double>> wall_dist;  // per grid: distance of cell centres from its wall
   std::vector<std::vector<char>> wall_hole;    // per grid: centre inside another solid
+  // Per grid: how much farther a cell's own wall is than the cover band (0: no grid can cover
+  // it; infinite for the background); fixed, since wall distances are taken in the grid's frame.
+  std::vector<std::vector<double>> slack;
   std::unique_ptr<geometry::MyringProfile> profile;
   double cb_station = 0;
   // Scratch for stencil searches: per grid, the stamp of the search that last reached a cell.
@@ -330,6 +351,18 @@ struct OversetAssembler::Impl {
     return b;
   }
 
+  // Body-frame box of fin i's solid at its present placement.
+  [[nodiscard]] Box fin_body_box(int i) const {
+    const auto& local = fin_boxes[static_cast<std::size_t>(i)];
+    const auto& placement = sys->fins[static_cast<std::size_t>(i)].placement;
+    Box b;
+    for (int k = 0; k < 8; ++k)
+      b.add(placement * Eigen::Vector3d((k & 1) ? local.hi.x() : local.lo.x(),
+                                        (k & 2) ? local.hi.y() : local.lo.y(),
+                                        (k & 4) ? local.hi.z() : local.lo.z()));
+    return b;
+  }
+
   // Fins turn rigidly with their grids: their surfaces are built once, undeflected, and queried
   // in the fin grid's frame, so moving a fin costs no new triangulation or tree.
   void place_fins(const std::vector<double>& deflections) {
@@ -379,7 +412,7 @@ struct OversetAssembler::Impl {
       const auto cu = static_cast<std::size_t>(c);
       if (st[cu] != CellStatus::active) continue;
       const Eigen::Vector3d x = body(g, c);
-      const double band = (settings.fringe_layers + 1.5) * d.size[cu];
+      const double band = cover_band(settings, d.size[cu]);
       for (std::size_t k = 0; k < others.size(); ++k) {
         if (!boxes[k].contains(x)) continue;
         const auto hu = static_cast<std::size_t>(others[k]);
@@ -765,6 +798,10 @@ OversetAssembler::OversetAssembler(GridSystem& system, const geometry::Vehicle& 
                                                    : nullptr;
     if (q != nullptr)
       for (std::size_t c = 0; c < n; ++c) w[c] = std::abs(q->signed_distance(d.geo.cell_centre[c]));
+    std::vector<double> slack(n);
+    for (std::size_t c = 0; c < n; ++c)
+      slack[c] = std::max(0.0, w[c] - cover_band(settings, d.size[c]));
+    m.slack.push_back(std::move(slack));
     m.wall_dist.push_back(std::move(w));
     m.wall_hole.emplace_back(n, 0);
     m.depth.emplace_back(n, kInf);
@@ -810,43 +847,82 @@ Assembly OversetAssembler::update(const Assembly& previous,
                                   const std::vector<double>& deflections) {
   const auto t0 = std::chrono::steady_clock::now();
   auto& m = *impl_;
-  // The region the fins sweep: their grids' boxes before and after the move.
-  std::vector<Box> swept;
+  // The region the fins sweep: their grids' boxes, and the boxes of the fin solids, before and
+  // after the move.
+  std::vector<Box> swept, swept_solid;
   for (std::size_t g = 0; g < m.grids.size(); ++g)
-    if (m.grids[g].fin >= 0) swept.push_back(m.body_box(static_cast<int>(g)));
+    if (m.grids[g].fin >= 0) {
+      swept.push_back(m.body_box(static_cast<int>(g)));
+      swept_solid.push_back(m.fin_body_box(m.grids[g].fin));
+    }
   m.place_fins(deflections);
   for (std::size_t g = 0, k = 0; g < m.grids.size(); ++g)
     if (m.grids[g].fin >= 0) {
       const Box b = m.body_box(static_cast<int>(g));
       swept[k].add(b.lo);
       swept[k].add(b.hi);
+      const Box s = m.fin_body_box(m.grids[g].fin);
+      swept_solid[k].add(s.lo);
+      swept_solid[k].add(s.hi);
       ++k;
     }
   Assembly a = previous;
   a.fin_deflections = deflections;
   a.cells_visited = 0;
   const double reach_cells = m.settings.overlap_cells + m.settings.fringe_layers + 2;
+  // The largest centre-to-vertex distance of the cells that can cover a hull or fin cell: a point
+  // lies at most this far from the centre of the covering cell containing it, where that cell's
+  // wall distance is taken.
+  double fin_cell_radius = 0;
+  for (const auto& d : m.grids)
+    if (d.fin >= 0) fin_cell_radius = std::max(fin_cell_radius, d.largest_radius);
+  const double hull_cell_radius = m.grids[0].largest_radius;  // grid 0 is the hull
+  // Which cells are re-examined (`cells`: their statuses may change) and which kept stencils are
+  // re-checked (`redo`). Each test is a necessary condition for a cell's status to change
+  // (test_overset compares the statuses with full assemblies; the depths of cells outside the
+  // region are kept from the previous assembly, as the region's boundary values):
+  //  - every change lies within reach of a swept fin-grid box (overlap depth plus fringe layers
+  //    and a margin, in the cell's own size): a moved grid's wall holes and the cells it covers
+  //    lie in its box;
+  //  - a hull or fin cell becomes or stops being a hole only inside a fin solid or where a fin
+  //    grid covers it, which needs the fin's wall nearer than its own by the cover band: within
+  //    its slack, plus the covering cell's radius, of the fin solid. Most fin-grid cells and the
+  //    hull's near-wall cells have no slack, so only the swept solids' boxes widened by the reach
+  //    matter to them, not the whole fin-grid boxes. The background has no wall (infinite slack);
+  //  - a fin-grid cell turns with its fin, so it can also change near the hull: inside it, or
+  //    covered by the hull grid within its slack (plus the hull cells' radius) of the hull wall.
+  //    The gap is measured radially at the cell's station, which exceeds the distance to the
+  //    sloping tail by up to 1 / cos of its slope (about 10 % at 25 deg); only the reach makes up
+  //    for that, a margin rather than a bound.
+  // A kept stencil of a hull or background receiver within reach of a swept fin-grid box is
+  // re-checked (`redo`) even where the receiver's status cannot change: a fin grid's active cells
+  // may now contain it and outrank its donor grid.
   std::vector<std::vector<int>> cells(m.grids.size());
   std::vector<std::vector<char>> redo(m.grids.size());
   for (std::size_t g = 0; g < m.grids.size(); ++g) {
     const auto& d = m.grids[g];
     redo[g].assign(static_cast<std::size_t>(d.grid->cells), 0);
-    // Hull and background: a status can change only within reach of the swept boxes (overlap
-    // depth plus fringe layers and a margin, in the cell's own size). A fin grid turns with its
-    // fin, so its cells change only as near to the hull or to the other fins.
+    const auto& slack = m.slack[g];
     for (int c = 0; c < d.grid->cells; ++c) {
+      const auto cu = static_cast<std::size_t>(c);
       const Eigen::Vector3d x = m.body(static_cast<int>(g), c);
-      const double reach = reach_cells * d.size[static_cast<std::size_t>(c)];
-      bool near = false;
-      for (std::size_t k = 0; k < swept.size() && !near; ++k)
-        near = static_cast<int>(k) != d.fin && swept[k].contains(x, reach);
+      const double reach = reach_cells * d.size[cu];
+      const double fin_cover_reach = slack[cu] > 0 ? slack[cu] + fin_cell_radius : 0.0;
+      bool near = false, in_swept_box = false;
+      for (std::size_t k = 0; k < swept.size(); ++k) {
+        if (static_cast<int>(k) == d.fin || !swept[k].contains(x, reach)) continue;
+        in_swept_box = true;
+        near = near || swept_solid[k].contains(x, reach + fin_cover_reach);
+      }
+      if (d.fin < 0 && in_swept_box) redo[g][cu] = 1;
       if (d.fin >= 0 && !near) {
         const double station = std::clamp(m.cb_station - x.x(), 0.0, m.profile->length());
-        near = std::hypot(x.y(), x.z()) - m.profile->radius(station) < reach;
+        const double hull_cover_reach = slack[cu] > 0 ? slack[cu] + hull_cell_radius : 0.0;
+        near = std::hypot(x.y(), x.z()) - m.profile->radius(station) < reach + hull_cover_reach;
       }
       if (near) {
         cells[g].push_back(c);
-        redo[g][static_cast<std::size_t>(c)] = 1;
+        redo[g][cu] = 1;
       }
     }
     a.cells_visited += static_cast<int>(cells[g].size());

@@ -20,6 +20,7 @@ TEST(MeshCli, WritesGridsAndReport) {
   const auto r = run_cli("mesh --preset coarse --fin-deflection 30 --out " + out.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_THAT(r.output, HasSubstr("upper_rudder"));
+  EXPECT_THAT(r.output, HasSubstr("fringe fallback   orphan"));  // the table's columns
   for (const char* f : {"mesh.vtm", "hull.vtu", "hull.agrid", "background.vtu", "mesh-report.json",
                         "port_stern_plane.vtu"})
     EXPECT_TRUE(std::filesystem::exists(out / f)) << f;
@@ -30,8 +31,14 @@ TEST(MeshCli, WritesGridsAndReport) {
   EXPECT_EQ(report["grids"].size(), 6U);  // hull, four fins, background
   EXPECT_DOUBLE_EQ(report["fin_deflections_deg"][0].get<double>(), 30.0);
   // The overset assembly ran: each component grid has fringe cells round its outer boundary.
-  for (const auto& g : report["grids"])
+  // Some take fallback donors (at the fin-hull junction), never more than there are fringe cells.
+  int fallbacks = 0;
+  for (const auto& g : report["grids"]) {
     EXPECT_GT(g["overset"]["fringe"].get<int>(), 0) << g["name"];
+    EXPECT_LE(g["overset"]["fallback"].get<int>(), g["overset"]["fringe"].get<int>()) << g["name"];
+    fallbacks += g["overset"]["fallback"].get<int>();
+  }
+  EXPECT_GT(fallbacks, 0);
   std::ifstream vtm(out / "mesh.vtm");
   const std::string text((std::istreambuf_iterator<char>(vtm)), {});
   EXPECT_THAT(text, HasSubstr("file=\"upper_rudder.vtu\""));

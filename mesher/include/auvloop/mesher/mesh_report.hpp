@@ -15,6 +15,9 @@ namespace auvloop::mesher {
 
 struct OversetCounts {
   int active = 0, fringe = 0, hole = 0, orphan = 0;
+  // Fringe cells with fallback donors: no active cell of another grid contains their centre, so
+  // their stencils extrapolate (GridAssembly::fallback).
+  int fallback = 0;
 };
 
 struct GridReport {
