@@ -79,7 +79,8 @@ struct GridData {
   std::vector<KPoint> centres;
   std::unique_ptr<KTree> tree;
   Box local_box;
-  double largest_radius = 0;  // largest distance from a cell centre to one of its points
+  std::vector<double> radius;  // per cell: largest distance from its centre to one of its points
+  double largest_radius = 0;   // over all cells
   int priority = 0;
   int fin = -1;  // index of the fin it belongs to, -1 for hull and background
 
@@ -141,17 +142,20 @@ GridData prepare(const Grid& g, int priority, int fin) {
     d.ids.push_back(static_cast<int>(c));
   }
   for (const auto& p : g.points) d.local_box.add(p);
+  d.radius.assign(static_cast<std::size_t>(g.cells), 0.0);
   for (int f = 0; f < g.faces(); ++f) {
     const auto fu = static_cast<std::size_t>(f);
     for (int k = g.face_offsets[fu]; k < g.face_offsets[fu + 1]; ++k) {
       const auto& p =
           g.points[static_cast<std::size_t>(g.face_points[static_cast<std::size_t>(k)])];
       for (int c : {g.owner[fu], f < g.internal_faces() ? g.neighbour[fu] : -1})
-        if (c >= 0)
-          d.largest_radius = std::max(d.largest_radius,
-                                      (p - d.geo.cell_centre[static_cast<std::size_t>(c)]).norm());
+        if (c >= 0) {
+          auto& r = d.radius[static_cast<std::size_t>(c)];
+          r = std::max(r, (p - d.geo.cell_centre[static_cast<std::size_t>(c)]).norm());
+        }
     }
   }
+  for (double r : d.radius) d.largest_radius = std::max(d.largest_radius, r);
   d.tree = std::make_unique<KTree>(
       boost::make_zip_iterator(boost::make_tuple(d.centres.begin(), d.ids.begin())),
       boost::make_zip_iterator(boost::make_tuple(d.centres.end(), d.ids.end())));
@@ -876,7 +880,16 @@ Assembly OversetAssembler::update(const Assembly& previous,
   double fin_cell_radius = 0;
   for (const auto& d : m.grids)
     if (d.fin >= 0) fin_cell_radius = std::max(fin_cell_radius, d.largest_radius);
-  const double hull_cell_radius = m.grids[0].largest_radius;  // grid 0 is the hull
+  // The hull cells that can contain a fin-grid cell's centre lie within their radius of a swept
+  // fin-grid box: only their radii matter (the hull's outer cells are ten times larger).
+  double hull_cell_radius = 0;
+  const auto& hull = m.grids[0];  // grid 0 is the hull
+  for (int c = 0; c < hull.grid->cells; ++c) {
+    const double r = hull.radius[static_cast<std::size_t>(c)];
+    const Eigen::Vector3d x = m.body(0, c);
+    if (std::any_of(swept.begin(), swept.end(), [&](const Box& b) { return b.contains(x, r); }))
+      hull_cell_radius = std::max(hull_cell_radius, r);
+  }
   // Which cells are re-examined (`cells`: their statuses may change) and which kept stencils are
   // re-checked (`redo`). Each test is a necessary condition for a cell's status to change
   // (test_overset compares the statuses with full assemblies; the depths of cells outside the
@@ -897,6 +910,14 @@ Assembly OversetAssembler::update(const Assembly& previous,
   // A kept stencil of a hull or background receiver within reach of a swept fin-grid box is
   // re-checked (`redo`) even where the receiver's status cannot change: a fin grid's active cells
   // may now contain it and outrank its donor grid.
+  // The background has no wall and its cells are large: a fin grid covers one only where the
+  // fin grid is deeper than overlap_cells of its sizes, which its deepest cell (twice that, as a
+  // margin for the move) bounds; otherwise only the fin solids' wall holes and the fringe round
+  // them can change it.
+  double fin_depth = 0;
+  for (std::size_t g = 0; g < m.grids.size(); ++g)
+    if (m.grids[g].fin >= 0)
+      for (double v : m.depth[g]) fin_depth = std::max(fin_depth, v);
   std::vector<std::vector<int>> cells(m.grids.size());
   std::vector<std::vector<char>> redo(m.grids.size());
   for (std::size_t g = 0; g < m.grids.size(); ++g) {
@@ -906,8 +927,10 @@ Assembly OversetAssembler::update(const Assembly& previous,
     for (int c = 0; c < d.grid->cells; ++c) {
       const auto cu = static_cast<std::size_t>(c);
       const Eigen::Vector3d x = m.body(static_cast<int>(g), c);
-      const double reach = reach_cells * d.size[cu];
-      const double fin_cover_reach = slack[cu] > 0 ? slack[cu] + fin_cell_radius : 0.0;
+      const bool coverable =
+          d.priority > 0 || m.settings.overlap_cells * d.size[cu] < 2 * fin_depth;
+      const double reach = (coverable ? reach_cells : m.settings.fringe_layers + 2) * d.size[cu];
+      const double fin_cover_reach = slack[cu] > 0 && coverable ? slack[cu] + fin_cell_radius : 0.0;
       bool near = false, in_swept_box = false;
       for (std::size_t k = 0; k < swept.size(); ++k) {
         if (static_cast<int>(k) == d.fin || !swept[k].contains(x, reach)) continue;
