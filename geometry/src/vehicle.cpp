@@ -79,12 +79,13 @@ void check_fin_roots(Table t, const FinSetParameters& set, const MyringProfile& 
     for (double x : {0.0, 1.0}) {
       const double rho = fin.root_rho(x);
       if (!(rho < set.tip_radius * (1 - 1e-9))) {
-        t.fail("root_le_station",
-               fmt::format("the {} edge of fin \"{}\" lies {}: its root face (hull radius plus "
-                           "root_gap) cannot be placed",
-                           x == 0 ? "leading" : "trailing", placement.name,
-                           std::isinf(rho) ? "beyond the hull ends"
-                                           : "below the hull surface at the tip radius"));
+        const bool off_hull = std::isinf(rho);
+        t.fail(off_hull ? "root_le_station" : "root_gap",
+               fmt::format("the root face of fin \"{}\" (hull radius plus root_gap) cannot be "
+                           "placed at its {} edge: {}",
+                           placement.name, x == 0 ? "leading" : "trailing",
+                           off_hull ? "the edge lies beyond the hull's ends"
+                                    : "the hull radius plus root_gap reaches tip_radius there"));
         return;
       }
     }

@@ -140,11 +140,11 @@ struct Levels {
 };
 
 // Depths below the root face: wall cells from first_cell, growing to gap / gap_cells, uniform
-// across the gap and half a gap beyond (the hull lies one gap down at zero deflection, further
-// when turned), then growing to root_depth. The hull grid's fringe round its cells inside the fin
-// reaches two of its layers down from the root face, and this grid's fringe two levels up from
-// the hull; fine uniform levels keep both bands thin so that each finds active donors in the
-// other grid's part of the gap.
+// across the gap and half a gap beyond (the hull lies one gap down under the chord line at zero
+// deflection, lower beside it, and 0.8 gap down at 35 deg), then growing to root_depth. The hull
+// grid's fringe round its cells inside the fin reaches two of its layers down from the root face,
+// and this grid's fringe two levels up from the hull; fine uniform levels keep both bands thin so
+// that each finds active donors in the other grid's part of the gap.
 std::vector<double> depths_below_root(const FinGridSpec& s, double gap) {
   return banded_nodes(s.root_depth, s.first_cell, s.growth, gap / s.gap_cells, 1.5 * gap);
 }

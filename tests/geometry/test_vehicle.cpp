@@ -103,7 +103,9 @@ TEST(Vehicle, CrossFieldChecks) {
   EXPECT_THAT(load_error(preset_with("[0.0, 3.45, 0.0]", "[0.1, 3.45, 0.0]")),
               HasSubstr("mass.inertia: the inertia tensor must be symmetric"));
   EXPECT_THAT(load_error(preset_with("root_gap = 0.003", "root_gap = 0.09")),
-              HasSubstr("below the hull surface at the tip radius: its root face"));
+              HasSubstr("fins.root_gap: the root face of fin \"upper_rudder\" (hull radius plus "
+                        "root_gap) cannot be placed at its leading edge: the hull radius plus "
+                        "root_gap reaches tip_radius there"));
   EXPECT_THAT(load_error(preset_with("root_gap = 0.003", "root_gap = 0")),
               HasSubstr("fins.root_gap: value 0 is out of range"));
   EXPECT_THAT(load_error(preset_with("hub_diameter = 0.0324", "hub_diameter = 0.2")),

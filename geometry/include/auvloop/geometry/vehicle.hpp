@@ -50,7 +50,7 @@ struct FinSetParameters {
   double tip_radius = 0;       // m, distance of the fin tip from the hull axis
   double post_station = 0;     // m aft of nose: the fin post (axis of deflection, radial)
   // m, radial clearance between the fin root and the hull along the chord line at zero deflection
-  // (the paper's rudder-hull gap; it only widens as the fin turns, docs/vehicle-file.md)
+  // (the paper's rudder-hull gap; it changes as the fin turns, docs/vehicle-file.md)
   double root_gap = 0;
   double max_deflection = 0;  // rad, mechanical limit (magnitude)
 
