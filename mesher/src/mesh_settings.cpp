@@ -40,13 +40,15 @@ struct Preset {
   double spacing, bg_growth;
 };
 
-// Counts chosen for about 50 k, 250 k and 1 M cells in all (56 k, 258 k, 1.06 M: docs/mesher.md).
-// Wall counts set the wall accuracy; the fin grid extent and the background's far-field growth
-// set the totals. The hull grid stays about three near-body background cells thick: thinner, the
-// background cells round its outer boundary are fringe themselves and far more fringe cells need
-// fallback donors (coarse at 0 deg, a 0.14 m hull grid in 0.1 m background cells: 10,116 of
-// 10,632 instead of 5,696 of 10,864). Coarse and medium grids are for wall functions (y+ 30 and
-// 5 with the all-y+ treatment); fine resolves the viscous sublayer (y+ 1).
+// Counts chosen for about 50 k, 250 k and 1 M cells in all (60 k, 276 k, 1.10 M: docs/mesher.md).
+// Wall counts set the wall accuracy; the growth rates set the totals. The fin grids reach 0.1 m
+// from the fin and above the tip, beyond the hull grid's fringe round its cells inside the fin, so
+// that their own outer fringe lies over active hull cells (at 0.03 m, 45 % instead of 24 % of the
+// coarse fringe cells took fallback donors at 0 deg). The hull grid stays about three near-body
+// background cells thick: thinner (or a coarser background), the background cells round its outer
+// boundary are fringe themselves (a 0.08 m coarse background: 43 %). Coarse and medium grids are
+// for wall functions (y+ 30 and 5 with the all-y+ treatment); fine resolves the viscous sublayer
+// (y+ 1).
 constexpr Preset kPresets[] = {
     {"coarse", 30, 3, 28, 2, 20, 3, 1.5, 0.2, 8, 4, 3, 1.6, 0.1, 0.07, 1.8},
     {"medium", 5, 5, 48, 4, 36, 5, 1.25, 0.14, 10, 8, 6, 1.4, 0.1, 0.035, 1.4},

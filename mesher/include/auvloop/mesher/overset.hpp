@@ -14,8 +14,9 @@
 //   4. donors: the cell of another grid (priority order) that contains the fringe cell's centre
 //      and is active, found by a walk through the cells from the nearest cell centre (a k-d tree),
 //      or from the previous donor in an incremental update; the stencil is it and its active
-//      neighbours. Failing that in every grid (at the fin-hull junction the containing fin-grid
-//      cell straddles the hull wall and is a hole), a fallback donor: the active cells nearest to
+//      neighbours. Failing that in every grid (where the fringes of two grids overlap: beside a
+//      fin near the hull, and at a fin grid's outer boundary over the hull grid's fringe round
+//      its cells inside the fin; docs/mesher.md), a fallback donor: the active cells nearest to
 //      the containing cell (or, just outside a grid, to its nearest cell) in the grid where they
 //      lie nearest to the centre, in their cell sizes. Weights: the minimum (inverse-distance
 //      weighted) norm solution of sum w = 1, sum w x = x_fringe, so linear fields are interpolated
@@ -64,9 +65,8 @@ struct OversetSettings {
   // finds active donors among this grid's cells (the 0.87 of a size to the farthest corner).
   double overlap_cells = 3.5;
   double surface_edge = 0.004;  // m, triangulation of hull and fins for the inside tests
-  // When the cell of another grid containing a fringe centre is not active (a fin-grid cell
-  // straddling the hull wall at the fin root, a hull cell beside a fin), the donors are the active
-  // cells within this many face steps of it.
+  // When the cell of another grid containing a fringe centre is not active (a fringe or hole cell
+  // of that grid), the donors are the active cells within this many face steps of it.
   int fallback_rings = 5;
 };
 
