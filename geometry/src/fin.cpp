@@ -14,7 +14,6 @@ FinGeometry::FinGeometry(const FinSetParameters& set, const FinPlacement& placem
     : set_(set),
       placement_(placement),
       hull_(hull),
-      cb_station_(cb_station),
       e_span_(0.0, std::sin(placement.roll), -std::cos(placement.roll)),
       e_chord_(-1.0, 0.0, 0.0),
       e_normal_(e_span_.cross(e_chord_)),
@@ -58,7 +57,7 @@ double FinGeometry::hull_clearance(double deflection) const {
     // The edges and the middle of the root face's line across the section (the part nearest the
     // axis on a turned fin).
     for (const Eigen::Vector3d& p : {upper, lower, Eigen::Vector3d(0.5 * (upper + lower))}) {
-      const double station = cb_station_ - p.x();
+      const double station = set_.post_station + post_origin_.x() - p.x();
       const double outside = station < 0 || station > hull_.length() ? 0 : hull_.radius(station);
       clearance = std::min(clearance, std::hypot(p.y(), p.z()) - outside);
     }

@@ -42,12 +42,10 @@ GridSystem build_grid_system(const geometry::Vehicle& v, const MeshSettings& s) 
   GridSystem sys;
   const geometry::MyringProfile profile(v.hull);
   HullGridSpec hull = s.hull;
-  if (!v.fin_set.fins.empty()) {
-    if (equally_spaced(v.fin_set.fins)) {
-      hull.fins = static_cast<int>(v.fin_set.fins.size());
-      // Roll 0 points up (-z): polar angle -90 deg from +y towards +z.
-      hull.fin_angle = v.fin_set.fins.front().roll - 0.5 * std::numbers::pi;
-    }
+  if (!v.fin_set.fins.empty() && equally_spaced(v.fin_set.fins)) {
+    hull.fins = static_cast<int>(v.fin_set.fins.size());
+    // Roll 0 points up (-z): polar angle -90 deg from +y towards +z.
+    hull.fin_angle = v.fin_set.fins.front().roll - 0.5 * std::numbers::pi;
   }
   sys.hull = hull_grid(profile, v.mass.cb_station, hull);
   for (const auto& placement : v.fin_set.fins) {

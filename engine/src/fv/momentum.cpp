@@ -9,7 +9,6 @@
 #include "auvloop/engine/fv/pimple.hpp"
 
 #include <algorithm>
-#include <stdexcept>
 
 #include <fmt/format.h>
 
@@ -51,14 +50,10 @@ void Pimple::solve_momentum(Momentum& m, StepReport& r, bool first) {
       rhs[c] = use_force ? -force[c] : -gp[c][static_cast<Eigen::Index>(i)];
     Matrix eq = m.eq[i];
     eq.add_rhs(mesh_, rhs);
-    SolveStats s;
-    try {
-      s = solver_.solve_asymmetric(eq, U.c[i].cells, AsymmetricMethod::bicgstab_jacobi);
-    } catch (const std::runtime_error& e) {
-      throw std::runtime_error(fmt::format("momentum equation U{}: {}; largest residual in {}",
-                                           "xyz"[i], e.what(),
-                                           largest_residual_at(mesh_, eq, U.c[i].cells)));
-    }
+    const auto s =
+        solve_named(mesh_, eq, U.c[i].cells, fmt::format("momentum equation U{}", "xyz"[i]), [&] {
+          return solver_.solve_asymmetric(eq, U.c[i].cells, AsymmetricMethod::bicgstab_jacobi);
+        });
     if (first) r.momentum_residual = std::max(r.momentum_residual, s.initial_residual);
     r.outer_residual = std::max(r.outer_residual, s.initial_residual);
     U.c[i].update_boundary(mesh_);

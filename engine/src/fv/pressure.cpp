@@ -10,9 +10,6 @@
 //      p relaxed in all but the final outer iteration; U = HbyA - D grad(p).
 #include "auvloop/engine/fv/pimple.hpp"
 
-#include <stdexcept>
-
-#include <fmt/format.h>
 #include <Eigen/LU>
 
 #include "diagnosis.hpp"
@@ -159,13 +156,9 @@ void Pimple::correct_pressure(const Momentum& m, StepReport& r, bool first, bool
     Matrix eq = laplacian(mesh_, Df, p);
     for (std::size_t c = 0; c < n; ++c) eq.source[c] += net[c] * mesh_.volume(static_cast<int>(c));
     if (!pressure_fixed_) eq.diag[0] += eq.diag[0];  // reference value p = 0 in cell 0
-    SolveStats s;
-    try {
-      s = solver_.solve_symmetric(eq, p.cells, *settings_.pressure_solver);
-    } catch (const std::runtime_error& e) {
-      throw std::runtime_error(fmt::format("pressure equation: {}; largest residual in {}",
-                                           e.what(), largest_residual_at(mesh_, eq, p.cells)));
-    }
+    const auto s = solve_named(mesh_, eq, p.cells, "pressure equation", [&] {
+      return solver_.solve_symmetric(eq, p.cells, *settings_.pressure_solver);
+    });
     if (first && corr == 0) r.pressure_residual = s.initial_residual;
     r.pressure_iterations += s.iterations;
     // Face flux of the pressure equation with the same explicit part as its source.

@@ -58,7 +58,6 @@ class FinGeometry {
   FinSetParameters set_;
   FinPlacement placement_;
   MyringProfile hull_;
-  double cb_station_ = 0;
   Eigen::Vector3d e_span_, e_chord_, e_normal_, post_origin_;
 };
 
