@@ -177,18 +177,9 @@ double violation(const GridData& d, int cell, const Eigen::Vector3d& x) {
   return worst;
 }
 
-// The cell containing x (grid frame): walk towards x across the face it lies furthest beyond,
-// from `seed` (a previous donor) or the nearest cell centre (k-d tree). A walk can end on the
-// boundary although x is inside the grid (the fluid round a convex body is not convex), or
-// circle among warped cells; then the 16 nearest cells are tried. -1: x is in no cell.
-int locate_cell(const GridData& d, const Eigen::Vector3d& x, int seed) {
-  if (!d.local_box.contains(x)) return -1;
-  const KPoint q(x.x(), x.y(), x.z());
-  int c = seed;
-  if (c < 0) {
-    KSearch search(*d.tree, q, 1);
-    c = boost::get<1>(search.begin()->first);
-  }
+// A walk from cell c towards x across the face x lies furthest beyond: the cell containing x, or
+// -1 when the walk leaves the grid or circles among warped cells.
+int walk(const GridData& d, const Eigen::Vector3d& x, int c) {
   for (int step = 0; step < 200 && c >= 0; ++step) {
     int best_face = -1;
     double best = 1e-12 * d.size[static_cast<std::size_t>(c)];
@@ -201,6 +192,25 @@ int locate_cell(const GridData& d, const Eigen::Vector3d& x, int seed) {
     });
     if (best_face < 0) return c;
     c = d.other(best_face, c);
+  }
+  return -1;
+}
+
+// The cell containing x (grid frame): a walk from `seed` (a previous donor), else from the nearest
+// cell centre (k-d tree). A walk can end on the boundary although x is inside the grid (the fluid
+// round a body is not convex: a walk from a distant seed can run into the wall), or circle among
+// warped cells; then the 16 nearest cells are tried. -1: x is in no cell.
+int locate_cell(const GridData& d, const Eigen::Vector3d& x, int seed) {
+  if (!d.local_box.contains(x)) return -1;
+  const KPoint q(x.x(), x.y(), x.z());
+  if (seed >= 0) {
+    const int c = walk(d, x, seed);
+    if (c >= 0) return c;
+  }
+  {
+    KSearch search(*d.tree, q, 1);
+    const int c = walk(d, x, boost::get<1>(search.begin()->first));
+    if (c >= 0) return c;
   }
   KSearch search(*d.tree, q, 16);
   int best_cell = -1;
@@ -239,8 +249,8 @@ bool linear_weights(const std::vector<Eigen::Vector3d>& xs, const Eigen::Vector3
                     std::vector<double>& w) {
   const auto n = static_cast<Eigen::Index>(xs.size());
   if (n < 4) return false;
-  // Offsets in units of the stencil's extent keep the 4 x 4 system well scaled; the constraints
-  // (and so the exactness for linear fields) do not depend on that scale or on D.
+  // Offsets in units of the stencil's extent keep the system well scaled; the constraints (and so
+  // the exactness for linear fields) do not depend on that scale or on D.
   double h = 0;
   for (const auto& p : xs) h = std::max(h, (p - x).norm());
   Eigen::MatrixXd A(4, n);
@@ -250,21 +260,42 @@ bool linear_weights(const std::vector<Eigen::Vector3d>& xs, const Eigen::Vector3
     A.col(i) << 1.0, r;
     D(i) = 1.0 / (r.squaredNorm() + 1e-3);
   }
-  // Minimum-norm solution through the 4 x 4 normal equations (A D A^T) y = e1, w = D A^T y, with
-  // two steps of iterative refinement on the constraint residual e1 - A w: the normal equations
-  // square the condition number, which matters for fallback stencils that extrapolate, and the
-  // refinement brings sum w = 1 and sum w r = 0 back to round-off at the cost of two 4 x 4 solves.
-  const Eigen::Matrix4d M = A * D.asDiagonal() * A.transpose();
-  const Eigen::FullPivLU<Eigen::Matrix4d> lu(M);
-  if (lu.rank() < 4) return false;  // centres in a plane
+  // Minimum-norm solution of B v = e1 with B = A D^(1/2), w = D^(1/2) v, through a QR
+  // factorisation of B^T (n x 4): v = Q R^-T e1. Unlike the normal equations (A D A^T) y = e1 it
+  // does not square the condition number, which matters for fallback stencils that extrapolate;
+  // two steps of iterative refinement on the constraint residual e1 - A w bring sum w = 1 and
+  // sum w r = 0 back to round-off.
+  const Eigen::VectorXd sqrt_d = D.cwiseSqrt();
+  const Eigen::MatrixXd Bt = (A * sqrt_d.asDiagonal()).transpose();
+  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(Bt);
+  const Eigen::Matrix4d R = qr.matrixQR().topLeftCorner<4, 4>().triangularView<Eigen::Upper>();
+  const double scale = std::abs(R(0, 0));
+  for (int k = 0; k < 4; ++k)
+    if (!(std::abs(R(k, k)) > 1e-8 * scale)) return false;  // centres in a plane
+  const Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(n, 4);
+  const auto solve = [&](const Eigen::Vector4d& rhs) -> Eigen::VectorXd {
+    const Eigen::Vector4d y = R.transpose().triangularView<Eigen::Lower>().solve(rhs);
+    return sqrt_d.asDiagonal() * (Q * y);
+  };
   const Eigen::Vector4d e1(1, 0, 0, 0);
-  Eigen::VectorXd wv = D.asDiagonal() * (A.transpose() * lu.solve(e1));
-  for (int step = 0; step < 2; ++step) {
-    const Eigen::Vector4d residual = e1 - A * wv;
-    wv += D.asDiagonal() * (A.transpose() * lu.solve(residual));
-  }
+  Eigen::VectorXd wv = solve(e1);
+  for (int step = 0; step < 2; ++step) wv += solve(e1 - A * wv);
   w.assign(wv.data(), wv.data() + n);
   return true;
+}
+
+// How deep inside the covering grid's active region (away from its holes and outer boundary) a
+// cell of this size must lie to be covered, where the covering cell has this radius (largest
+// centre-to-point distance). `overlap_cells` of the cell's own sizes, so that its fringe, which
+// lies up to about two of them away, falls inside that region; and fringe_layers + 1.5 diameters
+// of the covering cell, so that the covering grid's cells there are not its own fringe: those lie
+// within fringe_layers face steps of its holes, and a step across a stretched cell (a hull wall
+// cell is ten times longer than it is high) spans up to a diameter. Without this second term a
+// small fin-grid cell was covered over a coarse hull cell next to the hull's hole round the fin,
+// and its fringe fell into the hull's fringe (with it, the medium fallback donors at 0 deg fell
+// from 2,600 to 110).
+double cover_depth(const OversetSettings& s, double size, double covering_radius) {
+  return s.overlap_cells * size + (s.fringe_layers + 1.5) * 2 * covering_radius;
 }
 
 // How much nearer another grid's wall must be for it to cover a cell of this size: the fringe
@@ -303,16 +334,16 @@ struct OversetAssembler::Impl {
     if (loc >= 0) found[static_cast<std::size_t>(h)] = loc;
   }
 
-  // Steps 1-3 for the given cells of every grid (all others keep their statuses and depths).
+  // Steps 1-3 for the given cells of every grid (all others keep their statuses).
+  // The depths are measured afresh over the whole of every component grid: a wall hole that
+  // moved changes them far beyond the cells whose statuses can change (up to the deepest a
+  // covered cell must lie, several of the largest hull cells).
   void run(Assembly& a, const std::vector<std::vector<int>>& cells) {
     for (int g : order)
       mark_wall_holes(g, cells[static_cast<std::size_t>(g)],
                       a.grids[static_cast<std::size_t>(g)].status);
     for (int g : order)
-      if (grids[static_cast<std::size_t>(g)].priority > 0)
-        measure_depth(g, cells[static_cast<std::size_t>(g)],
-                      a.grids[static_cast<std::size_t>(g)].status,
-                      depth[static_cast<std::size_t>(g)]);
+      if (grids[static_cast<std::size_t>(g)].priority > 0) measure_depth(g);
     for (int g : order)
       cover(g, cells[static_cast<std::size_t>(g)], a.grids[static_cast<std::size_t>(g)].status);
     // Fringe layers are redrawn on the cells given and `fringe_layers` rings around them: a
@@ -337,6 +368,18 @@ struct OversetAssembler::Impl {
       }
       add_fringe(g, region, a.grids[gu].status);
     }
+  }
+
+  // Distance of a body-frame point from the hull, radial beside it (which exceeds the distance to
+  // the sloping tail by up to 1 / cos of its slope) and to the nearer end face's rim beyond it.
+  [[nodiscard]] double hull_gap(const Eigen::Vector3d& x) const {
+    const double station = cb_station - x.x(), rho = std::hypot(x.y(), x.z());
+    const double length = profile->length();
+    if (station < 0 || station > length) {
+      const double end = station < 0 ? 0.0 : length;
+      return std::hypot(station - end, std::max(0.0, rho - profile->radius(end)));
+    }
+    return rho - profile->radius(station);
   }
 
   [[nodiscard]] Eigen::Vector3d body(int g, int c) const {
@@ -399,9 +442,9 @@ struct OversetAssembler::Impl {
 
   // Step 2: a cell is covered by another component grid whose wall is nearer (by the fringe
   // layers plus one and a half of this cell's sizes, so that both grids keep an overlap band where
-  // each has active cells for the other's fringe), when it also lies `overlap_cells` of its sizes
-  // inside that grid (away from its outer boundary and wall holes). The background has no wall:
-  // it is covered wherever a component grid reaches deep enough.
+  // each has active cells for the other's fringe), when it also lies deep enough inside that grid
+  // (away from its outer boundary and wall holes: cover_depth). The background has no wall: it is
+  // covered wherever a component grid reaches deep enough.
   void cover(int g, const std::vector<int>& cells, std::vector<CellStatus>& st) const {
     const auto& d = grids[static_cast<std::size_t>(g)];
     const auto& own_wall = wall_dist[static_cast<std::size_t>(g)];
@@ -425,7 +468,8 @@ struct OversetAssembler::Impl {
         remember(others[k], loc);
         if (loc < 0) continue;
         const auto lu = static_cast<std::size_t>(loc);
-        if (wall_hole[hu][lu] || depth[hu][lu] < settings.overlap_cells * d.size[cu]) continue;
+        if (wall_hole[hu][lu] || depth[hu][lu] < cover_depth(settings, d.size[cu], hd.radius[lu]))
+          continue;
         if (wall_dist[hu][lu] + band < own_wall[cu]) {
           st[cu] = CellStatus::hole;
           break;
@@ -486,22 +530,17 @@ struct OversetAssembler::Impl {
   }
 
   // Distance of each cell centre from the grid's wall holes and outer-boundary cells, along paths
-  // of centre-to-centre steps (Dijkstra), for the `cells` given; others keep their values and act
-  // as sources.
-  void measure_depth(int g, const std::vector<int>& cells, const std::vector<CellStatus>& st,
-                     std::vector<double>& dist) const {
+  // of centre-to-centre steps (Dijkstra).
+  void measure_depth(int g) {
     const auto& d = grids[static_cast<std::size_t>(g)];
+    const auto& holes = wall_hole[static_cast<std::size_t>(g)];
+    auto& dist = depth[static_cast<std::size_t>(g)];
     using Item = std::pair<double, int>;
     std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
-    std::vector<char> open(static_cast<std::size_t>(d.grid->cells), 0);
-    for (int c : cells) open[static_cast<std::size_t>(c)] = 1;
-    for (int c : cells) {
+    for (int c = 0; c < d.grid->cells; ++c) {
       const auto cu = static_cast<std::size_t>(c);
-      dist[cu] = st[cu] == CellStatus::active && !d.outer[cu] ? kInf : 0.0;
+      dist[cu] = holes[cu] || d.outer[cu] ? 0.0 : kInf;
       if (dist[cu] == 0.0) queue.emplace(0.0, c);
-      d.each_neighbour(c, [&](int n) {  // fixed values just outside the updated region
-        if (!open[static_cast<std::size_t>(n)]) queue.emplace(dist[static_cast<std::size_t>(n)], n);
-      });
     }
     while (!queue.empty()) {
       const double dc = queue.top().first;  // (not a structured binding: captured below)
@@ -510,7 +549,6 @@ struct OversetAssembler::Impl {
       if (dc > dist[static_cast<std::size_t>(c)]) continue;
       d.each_neighbour(c, [&](int n) {
         const auto nu = static_cast<std::size_t>(n);
-        if (!open[nu]) return;
         const double dn =
             dc + (d.geo.cell_centre[nu] - d.geo.cell_centre[static_cast<std::size_t>(c)]).norm();
         if (dn < dist[nu]) {
@@ -892,8 +930,8 @@ Assembly OversetAssembler::update(const Assembly& previous,
   }
   // Which cells are re-examined (`cells`: their statuses may change) and which kept stencils are
   // re-checked (`redo`). Each test is a necessary condition for a cell's status to change
-  // (test_overset compares the statuses with full assemblies; the depths of cells outside the
-  // region are kept from the previous assembly, as the region's boundary values):
+  // (test_overset compares the statuses with full assemblies; the depths are measured over whole
+  // grids, run()):
   //  - every change lies within reach of a swept fin-grid box (overlap depth plus fringe layers
   //    and a margin, in the cell's own size): a moved grid's wall holes and the cells it covers
   //    lie in its box;
@@ -939,9 +977,8 @@ Assembly OversetAssembler::update(const Assembly& previous,
       }
       if (d.fin < 0 && in_swept_box) redo[g][cu] = 1;
       if (d.fin >= 0 && !near) {
-        const double station = std::clamp(m.cb_station - x.x(), 0.0, m.profile->length());
         const double hull_cover_reach = slack[cu] > 0 ? slack[cu] + hull_cell_radius : 0.0;
-        near = std::hypot(x.y(), x.z()) - m.profile->radius(station) < reach + hull_cover_reach;
+        near = m.hull_gap(x) < reach + hull_cover_reach;
       }
       if (near) {
         cells[g].push_back(c);

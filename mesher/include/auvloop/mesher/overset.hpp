@@ -7,8 +7,11 @@
 // grid wins):
 //   1. wall holes: cells whose centre lies inside the hull or a fin (CGAL inside tests,
 //      geometry::SurfaceQuery, on the deflected surfaces);
-//   2. covered holes: a cell whose centre lies in an active cell of a higher-priority grid at
-//      least `overlap_cells` of its own sizes deep inside that grid's active region;
+//   2. covered holes: a cell whose centre lies in an active cell of another component grid whose
+//      wall is nearer (by the fringe layers plus one and a half of the cell's sizes; the
+//      background has no wall), at least `overlap_cells` of its own sizes plus fringe_layers + 1.5
+//      diameters of the covering cell deep inside that grid's active region (so that the cell's
+//      fringe finds covering-grid cells that are not fringe themselves);
 //   3. fringe: `fringe_layers` layers of cells next to holes and, for component grids, next to the
 //      outer (overset) boundary;
 //   4. donors: the cell of another grid (priority order) that contains the fringe cell's centre
