@@ -47,6 +47,13 @@ GridSystem build_grid_system(const geometry::Vehicle& v, const MeshSettings& s) 
     // Roll 0 points up (-z): polar angle -90 deg from +y towards +z.
     hull.fin_angle = v.fin_set.fins.front().roll - 0.5 * std::numbers::pi;
   }
+  if (!v.fin_set.fins.empty() && hull.fin_zone_end <= hull.fin_zone_begin) {
+    const auto& f = v.fin_set;  // the zone spans the fins' planform, root to tip
+    const double tip_le = f.root_le_station + f.span * std::tan(f.sweep);
+    hull.fin_zone_begin = std::min(f.root_le_station, tip_le);
+    hull.fin_zone_end = std::max(f.root_le_station + f.root_chord, tip_le + f.tip_chord);
+  }
+
   sys.hull = hull_grid(profile, v.mass.cb_station, hull);
   for (const auto& placement : v.fin_set.fins) {
     sys.fin_geometry.emplace_back(v.fin_set, placement, profile, v.mass.cb_station);

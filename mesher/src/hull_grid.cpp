@@ -33,6 +33,8 @@ void check_spec(const geometry::MyringProfile& profile, const HullGridSpec& s) {
   check(s.fin_clustering >= 0 && s.fin_clustering < 1, "fin_clustering", "must be in [0, 1)");
   check(s.fins == 0 || s.circumferential % s.fins == 0, "circumferential",
         fmt::format("must be a multiple of the number of fins ({})", s.fins));
+  check(s.fin_zone_share >= 0 && s.fin_zone_share < 1, "fin_zone_share", "must be in [0, 1)");
+  check(s.fin_zone_ramp > 0, "fin_zone_ramp", "must be positive");
   check(s.extent > 0, "extent", "must be positive");
   check(s.first_cell > 0, "first_cell", "must be positive");
   check(s.first_cell < profile.max_radius(), "first_cell",
@@ -57,18 +59,95 @@ class ArcLength {
     }
   }
   [[nodiscard]] double total() const { return arc_.back(); }
-  [[nodiscard]] double station(double arc) const {
-    const auto it = std::upper_bound(arc_.begin(), arc_.end(), arc);
-    if (it == arc_.end()) return station_.back();
-    const auto k = static_cast<std::size_t>(std::max<std::ptrdiff_t>(1, it - arc_.begin()));
-    const double t = (arc - arc_[k - 1]) / (arc_[k] - arc_[k - 1]);
-    return station_[k - 1] + t * (station_[k] - station_[k - 1]);
-  }
+  [[nodiscard]] double station(double arc) const { return lookup(arc_, station_, arc); }
 
  private:
+  // Linear interpolation of `to` at `x` in the increasing table `from`.
+  static double lookup(const std::vector<double>& from, const std::vector<double>& to, double x) {
+    const auto it = std::upper_bound(from.begin(), from.end(), x);
+    if (it == from.end()) return to.back();
+    const auto k = static_cast<std::size_t>(std::max<std::ptrdiff_t>(1, it - from.begin()));
+    const double t = (x - from[k - 1]) / (from[k] - from[k - 1]);
+    return to[k - 1] + t * (to[k] - to[k - 1]);
+  }
+
   std::vector<double> arc_, station_;
   Vec2 last_ = Vec2::Zero();
 };
+
+bool has_fin_zone(const HullGridSpec& s) {
+  return s.fin_zone_end > s.fin_zone_begin;
+}
+
+// 1 over the stern zone, fading to 0 over the ramp either side (cos^2, so sizes and the
+// clustering change smoothly along the hull).
+double fin_zone_weight(const HullGridSpec& s, double station) {
+  if (!has_fin_zone(s)) return 1;
+  const double out = std::max(s.fin_zone_begin - station, station - s.fin_zone_end);
+  if (out <= 0) return 1;
+  if (out >= s.fin_zone_ramp) return 0;
+  const double c = std::cos(0.5 * std::numbers::pi * out / s.fin_zone_ramp);
+  return c * c;
+}
+
+// Cumulative distribution, sampled at `at`, of a node distribution: the fraction of its cells
+// below each point (piecewise linear in the node index).
+std::vector<double> node_fractions(const std::vector<double>& nodes,
+                                   const std::vector<double>& at) {
+  const double n = static_cast<double>(nodes.size() - 1);
+  std::vector<double> f;
+  std::size_t j = 1;
+  for (double x : at) {
+    while (j + 1 < nodes.size() && nodes[j] < x) ++j;
+    const double t = (x - nodes[j - 1]) / (nodes[j] - nodes[j - 1]);
+    f.push_back(std::clamp((static_cast<double>(j - 1) + t) / n, 0.0, 1.0));
+  }
+  return f;
+}
+
+// The same for a density proportional to the stern-zone weight along the arc.
+std::vector<double> zone_fractions(const ArcLength& arc, const HullGridSpec& s,
+                                   const std::vector<double>& at) {
+  std::vector<double> f{0.0};
+  for (std::size_t k = 1; k < at.size(); ++k)  // trapezoidal rule
+    f.push_back(f.back() + 0.5 * (at[k] - at[k - 1]) *
+                               (fin_zone_weight(s, arc.station(at[k - 1])) +
+                                fin_zone_weight(s, arc.station(at[k]))));
+  for (double& v : f) v /= f.back();
+  return f;
+}
+
+// Arc-length nodes along the curved profile: rim-clustered, and with a stern zone a share
+// `fin_zone_share` of them spread by the zone weight instead (the nodes of the mixture of the two
+// distributions, found by inverting it on a fine table).
+std::vector<double> body_nodes(const ArcLength& arc, const HullGridSpec& s) {
+  auto sigma = graded_nodes(0, arc.total(), s.body_cells, s.rim_clustering, true);
+  if (!has_fin_zone(s) || s.fin_zone_share == 0) return sigma;
+  constexpr int kSamples = 8000;
+  std::vector<double> at;
+  for (int k = 0; k <= kSamples; ++k) at.push_back(arc.total() * k / kSamples);
+  const auto rim = node_fractions(sigma, at), zone = zone_fractions(arc, s, at);
+  std::vector<double> mixed;
+  for (std::size_t k = 0; k < at.size(); ++k)
+    mixed.push_back((1 - s.fin_zone_share) * rim[k] + s.fin_zone_share * zone[k]);
+  for (int k = 1; k < s.body_cells; ++k) {
+    const double target = k / static_cast<double>(s.body_cells);
+    const auto it = std::lower_bound(mixed.begin(), mixed.end(), target);
+    const auto m = static_cast<std::size_t>(std::max<std::ptrdiff_t>(1, it - mixed.begin()));
+    const double t = (target - mixed[m - 1]) / (mixed[m] - mixed[m - 1]);
+    sigma[static_cast<std::size_t>(k)] = at[m - 1] + t * (at[m] - at[m - 1]);
+  }
+  return sigma;
+}
+
+// Polar angle of ring point k (of nt) at `station`: half a step off the fin planes (no ring point
+// in a fin's mid-plane), the sectors narrowed at the fins by the clustering there.
+double ring_angle(const HullGridSpec& s, int k, int nt, double station) {
+  const double xi = s.fin_angle + 2 * std::numbers::pi * (k + 0.5) / nt;
+  if (s.fins == 0) return xi;
+  const double c = s.fin_clustering * fin_zone_weight(s, station);
+  return xi - c * std::sin(s.fins * (xi - s.fin_angle)) / s.fins;
+}
 
 // The wall-normal lines of the meridional grid: wall point (station, radius), the line that owns
 // that point (itself, or the rim line for a fan line), and the direction. Every wall point lies on
@@ -92,7 +171,7 @@ WallLines wall_lines(const geometry::MyringProfile& p, const HullGridSpec& s) {
     w.emplace_back(0.0, r);
   rims.push_back(w.size() - 1);
   const ArcLength arc(p);
-  const auto sigma = graded_nodes(0, arc.total(), s.body_cells, s.rim_clustering, true);
+  const auto sigma = body_nodes(arc, s);
   for (std::size_t k = 1; k + 1 < sigma.size(); ++k) {
     const double st = arc.station(sigma[k]);
     w.emplace_back(st, p.radius(st));
@@ -158,11 +237,7 @@ Grid hull_grid(const geometry::MyringProfile& profile, double cb_station, const 
       const Vec2 q = lines.point[iu] + dist[static_cast<std::size_t>(j)] * lines.dir[iu];
       index[iu].push_back(static_cast<int>(a.points().size()));
       for (int k = 0; k < (axis ? 1 : nt); ++k) {
-        // Half a step off the fin planes: no ring point in a fin's mid-plane.
-        const double xi = s.fin_angle + 2 * std::numbers::pi * (k + 0.5) / nt;
-        const double th =
-            s.fins > 0 ? xi - s.fin_clustering * std::sin(s.fins * (xi - s.fin_angle)) / s.fins
-                       : xi;
+        const double th = ring_angle(s, k, nt, q.x());
         const double r = axis ? 0.0 : q.y();
         a.add_point(Eigen::Vector3d(cb_station - q.x(), r * std::cos(th), r * std::sin(th)));
         layer.push_back(j);

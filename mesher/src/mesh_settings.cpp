@@ -34,25 +34,30 @@ struct Preset {
   const char* name;
   double yplus;
   int nose, body, tail, circumferential, rim_fan;
-  double hull_growth, hull_extent;
+  double hull_growth, hull_extent, fin_zone_share;
   int chordwise, span, te_fan;
   double fin_growth, fin_extent;
   double spacing, bg_growth;
 };
 
-// Counts chosen for about 50 k, 250 k and 1 M cells in all (60 k, 276 k, 1.10 M: docs/mesher.md).
-// Wall counts set the wall accuracy; the growth rates set the totals. The fin grids reach 0.1 m
-// from the fin and above the tip, beyond the hull grid's fringe round its cells inside the fin, so
-// that their own outer fringe lies over active hull cells (at 0.03 m, 45 % instead of 24 % of the
-// coarse fringe cells took fallback donors at 0 deg). The hull grid stays about three near-body
-// background cells thick: thinner (or a coarser background), the background cells round its outer
-// boundary are fringe themselves (a 0.08 m coarse background: 43 %). Coarse and medium grids are
-// for wall functions (y+ 30 and 5 with the all-y+ treatment); fine resolves the viscous sublayer
-// (y+ 1).
+// Counts chosen for about 50 k, 250 k and 1 M cells in all (63 k, 261 k, 1.13 M: docs/mesher.md).
+// Wall counts set the wall accuracy, the growth rates the totals; the rest is set by the overset
+// assembly, whose fringe cells need active donors (docs/mesher.md, "Sizing for overlap"):
+//  - round the fins the hull grid is refined (40 / 48 / 56 sectors, narrowed at the fins, and
+//    15 % of its rings over the fins' stations), because the hull's fringe round its cells inside
+//    a fin must not reach the fin grid's fringe at the hull (the root gap) or at its outer
+//    boundary;
+//  - the fin grids reach 0.1 m from the fin and above the tip, beyond that hull fringe;
+//  - the hull grid reaches past the background's fringe round its cells inside the hull (2.5
+//    background cells) by more than its own two outer cells: 0.3 m at a 0.07 m coarse background,
+//    0.14 m at 0.04 m (medium), 0.14 m at 0.032 m (fine; at 0.07 m the fine hull grid's outer
+//    fringe lay in the background's fringe along the whole hull).
+// Coarse and medium grids are for wall functions (y+ 30 and 5 with the all-y+ treatment); fine
+// resolves the viscous sublayer (y+ 1).
 constexpr Preset kPresets[] = {
-    {"coarse", 30, 3, 28, 2, 20, 3, 1.5, 0.2, 8, 4, 3, 1.6, 0.1, 0.07, 1.8},
-    {"medium", 5, 5, 48, 4, 36, 5, 1.25, 0.14, 10, 8, 6, 1.4, 0.1, 0.035, 1.4},
-    {"fine", 1, 8, 96, 6, 56, 8, 1.15, 0.07, 20, 16, 10, 1.35, 0.1, 0.032, 1.15},
+    {"coarse", 30, 3, 28, 2, 40, 3, 1.5, 0.3, 0.15, 8, 4, 3, 1.8, 0.1, 0.07, 2.0},
+    {"medium", 5, 5, 48, 4, 48, 5, 1.25, 0.14, 0.15, 10, 8, 6, 1.5, 0.1, 0.04, 1.4},
+    {"fine", 1, 8, 96, 6, 56, 8, 1.15, 0.14, 0.15, 20, 16, 10, 1.35, 0.1, 0.032, 1.15},
 };
 }  // namespace
 
@@ -82,6 +87,7 @@ MeshSettings mesh_preset(std::string_view name, const geometry::Vehicle& v) {
     s.hull.rim_fan = p.rim_fan;
     s.hull.growth = p.hull_growth;
     s.hull.extent = p.hull_extent;
+    s.hull.fin_zone_share = p.fin_zone_share;
     s.fin.chordwise_cells = p.chordwise;
     s.fin.span_cells = p.span;
     s.fin.trailing_edge_fan = p.te_fan;
@@ -122,6 +128,9 @@ void read_hull(input::Table t, HullGridSpec& h, bool& first_given) {
   read_counts(t, "rim_fan", h.rim_fan, 1);
   h.fin_clustering =
       t.number_or("fin_clustering", h.fin_clustering, input::Range{0, 1, false, true}, "");
+  h.fin_zone_share =
+      t.number_or("fin_zone_share", h.fin_zone_share, input::Range{0, 1, false, true}, "");
+  h.fin_zone_ramp = t.number_or("fin_zone_ramp", h.fin_zone_ramp, input::Range::positive(), "m");
   t.finish();
 }
 

@@ -30,11 +30,21 @@ struct HullGridSpec {
   int rim_fan = 6;               // lines fanning round each rim (end face to curved hull)
   // Equally spaced fins (0: none) and the polar angle (rad, from +y towards +z) of the first:
   // sectors narrow by the factor 1 - fin_clustering at each fin plane and widen between them
-  // (theta = xi - fin_clustering sin(fins (xi - fin_angle)) / fins), so that the hull cells
+  // (theta = xi - c sin(fins (xi - fin_angle)) / fins, c = fin_clustering), so that the hull cells
   // straddling a fin, and the fringe round them, stay close to it (docs/mesher.md).
   int fins = 0;
   double fin_angle = 0;
-  double fin_clustering = 0.5;
+  double fin_clustering = 0.3;
+  // Stern zone over the fins (stations, m aft of the nose; begin >= end: none, and the clustering
+  // applies along the whole hull). A share of the body cells is spread evenly over the zone, and
+  // the clustering applies there only, fading out over `fin_zone_ramp` either side (cos^2): the
+  // hull cells round the fins, whose fringe must stay clear of the fin grids' fringes, come out
+  // about half as long and narrower; elsewhere the sectors are even and the rings a little farther
+  // apart. build_grid_system sets the zone to the fins' planform.
+  double fin_zone_begin = 0;
+  double fin_zone_end = 0;
+  double fin_zone_share = 0.15;
+  double fin_zone_ramp = 0.1;  // m
 };
 
 // The grid frame is the body frame (origin at CB, x forward); throws std::invalid_argument naming
