@@ -25,6 +25,7 @@
 #include "auvloop/mesher/generators.hpp"
 #include "auvloop/mesher/grid_system.hpp"
 #include "auvloop/mesher/mesh_settings.hpp"
+#include "hull_case.hpp"
 
 using namespace auvloop;
 namespace fv = engine::fv;
@@ -85,46 +86,6 @@ mesher::Grid cavity_grid(const Options& o) {
                                patches, "cavity");
 }
 
-// The hull grid with its outer (overset) patch split into "inflow" (faces facing the oncoming
-// stream, U_inf . S < 0) and "outflow" (the rest), as a single-grid freestream case needs.
-mesher::Grid hull_freestream_grid(const std::string& preset, const Eigen::Vector3d& u_inf) {
-  const auto vehicle = geometry::preset_vehicle("remus100");
-  const auto settings = mesher::mesh_preset(preset, vehicle);
-  const mesher::Grid hull = mesher::build_grid_system(vehicle, settings).hull;
-  mesher::Grid g = hull;
-  g.face_offsets = {0};
-  g.face_points.clear();
-  g.owner.clear();
-  g.patches.clear();
-  const auto geo = mesher::compute_geometry(hull);
-  auto copy = [&](int f) {
-    const auto fs = static_cast<std::size_t>(f);
-    g.add_face(std::vector<int>(hull.face_points.begin() + hull.face_offsets[fs],
-                                hull.face_points.begin() + hull.face_offsets[fs + 1]),
-               hull.owner[fs]);
-  };
-  for (int f = 0; f < hull.internal_faces(); ++f) copy(f);
-  for (const auto& patch : hull.patches) {
-    if (patch.type != mesher::PatchType::overset) {
-      mesher::Patch p = patch;
-      p.start = g.faces();
-      for (int i = 0; i < patch.size; ++i) copy(patch.start + i);
-      g.patches.push_back(p);
-      continue;
-    }
-    for (const bool inflow : {true, false}) {
-      mesher::Patch p{inflow ? "inflow" : "outflow",
-                      inflow ? mesher::PatchType::inlet : mesher::PatchType::outlet, g.faces(), 0};
-      for (int i = 0; i < patch.size; ++i) {
-        const int f = patch.start + i;
-        if ((u_inf.dot(geo.face_area[static_cast<std::size_t>(f)]) < 0) == inflow) copy(f);
-      }
-      p.size = g.faces() - p.start;
-      g.patches.push_back(p);
-    }
-  }
-  return g;
-}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -133,7 +94,7 @@ int main(int argc, char** argv) {
                             static_cast<std::size_t>(o.threads));
   const bool hull = o.case_name == "hull";
   const Eigen::Vector3d u_inf(-1.54, 0, 0);  // REMUS 100 design speed, body frame (x forward)
-  const mesher::Grid grid = hull ? hull_freestream_grid(o.preset, u_inf) : cavity_grid(o);
+  const mesher::Grid grid = hull ? bench::hull_freestream_grid(o.preset, u_inf) : cavity_grid(o);
   const fv::Mesh mesh(grid);
   fv::PimpleSettings s;
   s.nu = hull ? 1.05e-6 : 1.0 / o.re;
@@ -144,24 +105,12 @@ int main(int argc, char** argv) {
   if (!o.pressure.empty()) s.pressure_solver = fv::symmetric_method_from_string(o.pressure);
   s.tolerance = 1e-6;
   s.max_courant = 1e9;  // a benchmark: report, do not stop
-  std::vector<double> uniform;
-  if (hull) {
-    // dt for Courant number `co` of the free stream in the smallest cell of the grid.
-    std::vector<double> flux(static_cast<std::size_t>(mesh.faces()));
-    for (int f = 0; f < mesh.faces(); ++f)
-      flux[static_cast<std::size_t>(f)] = u_inf.dot(mesh.area(f));
-    s.dt = o.co / fv::courant(mesh, flux, 1.0).first;
-  } else {
-    s.dt = o.co / o.n;  // Courant number `co` at the lid speed
-  }
+  // Courant number `co` of the free stream in the smallest cell, or at the lid speed.
+  s.dt = hull ? bench::freestream_dt(mesh, u_inf, o.co) : o.co / o.n;
   fv::Pimple flow(mesh, s);
   const std::string pressure = fv::to_string(*flow.settings().pressure_solver);
   if (hull) {
-    flow.U.fix(mesh, "hull", {0, 0, 0});
-    flow.U.fix(mesh, "inflow", u_inf);
-    flow.p.fix(mesh, "outflow", 0.0);
-    for (auto& comp : flow.U.c) comp.cells.assign(comp.cells.size(), 0.0);
-    flow.U.c[0].cells.assign(flow.U.c[0].cells.size(), u_inf.x());
+    bench::set_freestream(flow, mesh, u_inf);
   } else {
     for (const char* wall : {"left", "right", "bottom", "front", "back"})
       if (!o.two_d || wall[0] == 'l' || wall[0] == 'r' || wall[0] == 'b')
