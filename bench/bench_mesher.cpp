@@ -80,7 +80,8 @@ double thread_cpu_seconds() {
 double flow_step_seconds_per_cell(const char* name) {
   namespace fv = engine::fv;
   const Eigen::Vector3d u_inf(-1.54, 0, 0);  // REMUS 100 design speed
-  const fv::Mesh mesh(bench::hull_freestream_grid(name, u_inf));
+  const mesher::Grid grid = bench::hull_freestream_grid(name, u_inf);
+  const fv::Mesh mesh(grid);  // refers to the grid
   fv::PimpleSettings s;
   s.nu = 1.05e-6;
   s.outer_iterations = 5;

@@ -40,24 +40,25 @@ struct Preset {
   double spacing, bg_growth;
 };
 
-// Counts chosen for about 50 k, 250 k and 1 M cells in all (63 k, 261 k, 1.13 M: docs/mesher.md).
+// Counts chosen for about 50 k, 250 k and 1 M cells in all (59 k, 264 k, 1.15 M: docs/mesher.md).
 // Wall counts set the wall accuracy, the growth rates the totals; the rest is set by the overset
 // assembly, whose fringe cells need active donors (docs/mesher.md, "Sizing for overlap"):
 //  - round the fins the hull grid is refined (40 / 48 / 56 sectors, narrowed at the fins, and
-//    15 % of its rings over the fins' stations), because the hull's fringe round its cells inside
-//    a fin must not reach the fin grid's fringe at the hull (the root gap) or at its outer
+//    15 % of its rings over the fins' stations): the hull's fringe round its cells inside a fin
+//    must stay clear of the fin grid's fringe at the hull (in the root gap) and at its outer
 //    boundary;
 //  - the fin grids reach 0.1 m from the fin and above the tip, beyond that hull fringe;
 //  - the hull grid reaches past the background's fringe round its cells inside the hull (2.5
-//    background cells) by more than its own two outer cells: 0.3 m at a 0.07 m coarse background,
-//    0.14 m at 0.04 m (medium), 0.14 m at 0.032 m (fine; at 0.07 m the fine hull grid's outer
-//    fringe lay in the background's fringe along the whole hull).
-// Coarse and medium grids are for wall functions (y+ 30 and 5 with the all-y+ treatment); fine
-// resolves the viscous sublayer (y+ 1).
+//    background cells) by more than its own two outer cells, and at the stern past the fin grids
+//    (0.2 m from a 0.05 m radius clears the 0.131 m tip radius and 0.1 m above it): 0.3 m at the
+//    0.07 m coarse background, 0.2 m at 0.04 m and 0.032 m.
+// The coarse far field grows by 2 (1.8 cost 3.6 k more cells and changed no stencil). Coarse and
+// medium grids are for wall functions (y+ 30 and 5 with the all-y+ treatment); fine resolves the
+// viscous sublayer (y+ 1).
 constexpr Preset kPresets[] = {
     {"coarse", 30, 3, 28, 2, 40, 3, 1.5, 0.3, 0.15, 8, 4, 3, 1.8, 0.1, 0.07, 2.0},
-    {"medium", 5, 5, 48, 4, 48, 5, 1.25, 0.14, 0.15, 10, 8, 6, 1.5, 0.1, 0.04, 1.4},
-    {"fine", 1, 8, 96, 6, 56, 8, 1.15, 0.14, 0.15, 20, 16, 10, 1.35, 0.1, 0.032, 1.15},
+    {"medium", 5, 5, 48, 4, 48, 5, 1.25, 0.2, 0.15, 10, 8, 6, 1.5, 0.1, 0.04, 1.4},
+    {"fine", 1, 8, 96, 6, 56, 8, 1.15, 0.2, 0.15, 20, 16, 10, 1.35, 0.1, 0.032, 1.15},
 };
 }  // namespace
 
