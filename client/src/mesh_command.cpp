@@ -160,7 +160,7 @@ void register_mesh_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--json", o->json, "Print the mesh report as JSON instead of a table");
   cmd->add_flag("--no-overset", o->no_overset, "Skip the overset assembly (grids only)");
   cmd->footer(
-      "Presets: coarse (~50 k cells, y+ 30), medium (~250 k, y+ 5), fine (~1.3 M, y+ 1); first\n"
+      "Presets: coarse (~50 k cells, y+ 30), medium (~250 k, y+ 5), fine (~1.1 M, y+ 1); first\n"
       "cells from y+ at the design speed (1.54 m/s) by a flat-plate skin-friction estimate.\n"
       "Assembles the overset system at the fin deflections (hole cutting, fringes, donors).\n"
       "Writes DIR/mesh.vtm with one .vtu per grid (open mesh.vtm in ParaView; cell fields volume,\n"

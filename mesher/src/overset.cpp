@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <queue>
 #include <stdexcept>
 
@@ -14,6 +15,8 @@
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/property_map.h>
 #include <Eigen/Dense>
+#include <Eigen/SparseCore>
+#include <Eigen/SparseLU>
 #include <boost/iterator/zip_iterator.hpp>
 
 #include "auvloop/geometry/myring.hpp"
@@ -42,6 +45,10 @@ int GridAssembly::count(CellStatus s) const {
 
 int GridAssembly::fallbacks() const {
   return static_cast<int>(std::count(fallback.begin(), fallback.end(), 1));
+}
+
+int GridAssembly::chains() const {
+  return static_cast<int>(std::count(chained.begin(), chained.end(), 1));
 }
 
 namespace {
@@ -283,6 +290,12 @@ bool linear_weights(const std::vector<Eigen::Vector3d>& xs, const Eigen::Vector3
   w.assign(wv.data(), wv.data() + n);
   return true;
 }
+
+// How far outside its grid's wall (in edges of the hole test's triangulated surfaces) a fringe
+// centre may lie and still take the nearest cell as a containing donor: the triangulation lies
+// inside the exact body by at most its sagitta, edge^2 / (8 radius), 0.04 mm for 4 mm edges on the
+// 50 mm hull radius at the fins.
+constexpr double kWallSliver = 0.05;
 
 // How deep inside the covering grid's active region (away from its holes and outer boundary) a
 // cell of this size must lie to be covered, where the covering cell has this radius (largest
@@ -565,10 +578,12 @@ struct OversetAssembler::Impl {
   // in one plane). A `loc` that is not active (a fallback donor: the point lies in a hole or fringe
   // cell of h, e.g. a fin-grid cell straddling the hull wall at the fin root): the active cells
   // within `fallback_rings` face steps of it, through any cells. The weights reproduce linear
-  // fields either way; the fallback extrapolates over at most those few cells.
+  // fields either way; the fallback extrapolates over at most those few cells. With `relay`, the
+  // cells it marks (fringe cells with containing stencils of their own) count as active for a
+  // containing stencil: a chained stencil (chain()).
   bool stencil_in(int h, const Eigen::Vector3d& xl, int loc, bool containing,
                   const std::vector<CellStatus>& hs, std::vector<int>& stencil,
-                  std::vector<double>& w) const {
+                  std::vector<double>& w, const std::vector<char>* relay = nullptr) const {
     const auto& hd = grids[static_cast<std::size_t>(h)];
     // Cells reached are stamped (mark[cell] == stamp) instead of searched for in a list.
     auto& mark = marks[static_cast<std::size_t>(h)];
@@ -585,7 +600,7 @@ struct OversetAssembler::Impl {
         hd.each_neighbour(reached[i], [&](int n) {
           const auto nu = static_cast<std::size_t>(n);
           if (mark[nu] == stamp) return;
-          const bool act = hs[nu] == CellStatus::active;
+          const bool act = hs[nu] == CellStatus::active || (relay != nullptr && (*relay)[nu]);
           if (containing && !act) return;  // a containing donor's rings grow through active cells
           mark[nu] = stamp;
           reached.push_back(n);
@@ -641,7 +656,20 @@ struct OversetAssembler::Impl {
         fallback = false;
         return true;
       }
-      if (loc < 0 && hd.local_box.contains(xl, reach)) loc = nearest(hd, xl);
+      if (loc < 0 && hd.local_box.contains(xl, reach)) {
+        loc = nearest(hd, xl);
+        // Just outside a body-fitted grid's inscribed wall, inside the exact body but outside the
+        // coarser triangulation of the hole test: the nearest cell contains the centre but for
+        // that sliver, and is a containing donor if active.
+        if (hs[static_cast<std::size_t>(loc)] == CellStatus::active &&
+            violation(hd, loc, xl) < kWallSliver * settings.surface_edge &&
+            stencil_in(h, xl, loc, true, hs, cells_out, w_out)) {
+          donor_grid = h;
+          donor_cell = loc;
+          fallback = false;
+          return true;
+        }
+      }
       if (loc >= 0) located.emplace_back(h, loc);
     }
     // Among the grids' fallback stencils, the one that extrapolates least: the smallest distance
@@ -681,11 +709,18 @@ struct OversetAssembler::Impl {
       ga.donor_grid.assign(n, -1);
       ga.donor_cell.assign(n, -1);
       ga.fallback.assign(n, 0);
+      ga.chained.assign(n, 0);
       ga.stencil_offsets.assign(1, 0);
+      ga.stencil_grids.clear();
       ga.stencil_cells.clear();
       ga.stencil_weights.clear();
       std::vector<int> cells;
       std::vector<double> w;
+      const auto append = [&](int dg) {
+        ga.stencil_grids.insert(ga.stencil_grids.end(), cells.size(), dg);
+        ga.stencil_cells.insert(ga.stencil_cells.end(), cells.begin(), cells.end());
+        ga.stencil_weights.insert(ga.stencil_weights.end(), w.begin(), w.end());
+      };
       for (std::size_t c = 0; c < n; ++c) {
         if (ga.status[c] == CellStatus::fringe && !(previous && keep(a, *previous, *redo, g, c))) {
           int seed_grid = -1, seed_cell = -1;
@@ -699,15 +734,13 @@ struct OversetAssembler::Impl {
               refit(a, previous->grids[g], static_cast<int>(g), static_cast<int>(c), cells, w)) {
             ga.donor_grid[c] = previous->grids[g].donor_grid[c];
             ga.donor_cell[c] = previous->grids[g].donor_cell[c];
-            ga.stencil_cells.insert(ga.stencil_cells.end(), cells.begin(), cells.end());
-            ga.stencil_weights.insert(ga.stencil_weights.end(), w.begin(), w.end());
+            append(ga.donor_grid[c]);
           } else if (find_donor(static_cast<int>(g), static_cast<int>(c), seed_grid, seed_cell, a,
                                 cells, w, dg, dc, fb)) {
             ga.donor_grid[c] = dg;
             ga.donor_cell[c] = dc;
             ga.fallback[c] = fb ? 1 : 0;
-            ga.stencil_cells.insert(ga.stencil_cells.end(), cells.begin(), cells.end());
-            ga.stencil_weights.insert(ga.stencil_weights.end(), w.begin(), w.end());
+            append(dg);
           } else {
             ga.status[c] = CellStatus::orphan;
           }
@@ -718,16 +751,233 @@ struct OversetAssembler::Impl {
           ga.fallback[c] = pg.fallback[c];
           const auto b = static_cast<std::size_t>(pg.stencil_offsets[c]);
           const auto e = static_cast<std::size_t>(pg.stencil_offsets[c + 1]);
-          ga.stencil_cells.insert(ga.stencil_cells.end(),
-                                  pg.stencil_cells.begin() + static_cast<std::ptrdiff_t>(b),
-                                  pg.stencil_cells.begin() + static_cast<std::ptrdiff_t>(e));
-          ga.stencil_weights.insert(ga.stencil_weights.end(),
-                                    pg.stencil_weights.begin() + static_cast<std::ptrdiff_t>(b),
-                                    pg.stencil_weights.begin() + static_cast<std::ptrdiff_t>(e));
+          const auto range = [&](const auto& v) {
+            return std::pair(v.begin() + static_cast<std::ptrdiff_t>(b),
+                             v.begin() + static_cast<std::ptrdiff_t>(e));
+          };
+          const auto [g0, g1] = range(pg.stencil_grids);
+          const auto [c0, c1] = range(pg.stencil_cells);
+          const auto [w0, w1] = range(pg.stencil_weights);
+          ga.stencil_grids.insert(ga.stencil_grids.end(), g0, g1);
+          ga.stencil_cells.insert(ga.stencil_cells.end(), c0, c1);
+          ga.stencil_weights.insert(ga.stencil_weights.end(), w0, w1);
         }
         ga.stencil_offsets.push_back(static_cast<int>(ga.stencil_cells.size()));
       }
     }
+    chain(a);
+  }
+
+  // One donor of a chained stencil: grid, cell, weight.
+  struct Entry {
+    int grid, cell;
+    double weight;
+  };
+
+  // Fallback receivers whose centre lies in a fringe cell of another grid with a containing or
+  // chained stencil of its own (a relay) get a chained stencil instead: the containing stencil in
+  // that grid, through active cells and relays, with each relay replaced by its own stencil.
+  // Every donor is then active, the weights still reproduce linear fields (each level does), and
+  // nothing extrapolates. Each pass lets the chains reach one relay further into a region where
+  // two grids are both fringe (the fin root gap, docs/mesher.md); in its middle the receivers
+  // depend on each other, and solve_knots composes their stencils through a small linear solve.
+  void chain(Assembly& a) const {
+    for (int pass = 0; pass < settings.chain_passes; ++pass)
+      if (!chain_once(a)) break;
+    solve_knots(a);
+  }
+
+  // A fallback receiver's containing stencil through relays (knot_row): weights on active cells
+  // (`known`, keyed by grid and cell) and on knot receivers (`knot`, by index; solve_knots).
+  struct KnotRow {
+    std::map<std::pair<int, int>, double> known;
+    std::map<int, double> knot;
+    bool ok = false;
+  };
+
+  // The fallback receivers the chains cannot reach: where two grids are both fringe, each one's
+  // containing cell is another's receiver (a knot). Each gets its containing stencil through
+  // active cells, relays and the other knot receivers; their values then solve
+  // (I - W_kk) v_k = W_ka v_a, and the rows of X = (I - W_kk)^-1 W_ka are stencils over active
+  // cells only. They reproduce linear fields, since the exact values solve the same system, and
+  // they interpolate (no stencil extrapolates). A receiver without such a stencil, or a singular
+  // system, keeps its fallback.
+  void solve_knots(Assembly& a) const {
+    std::vector<std::pair<int, int>> knots;
+    std::vector<std::vector<int>> index(grids.size());
+    std::vector<std::vector<char>> usable(grids.size());
+    for (std::size_t g = 0; g < grids.size(); ++g) {
+      const auto& ga = a.grids[g];
+      index[g].assign(ga.status.size(), -1);
+      usable[g].assign(ga.status.size(), 0);
+      for (std::size_t c = 0; c < ga.status.size(); ++c) {
+        if (ga.status[c] != CellStatus::fringe) continue;
+        usable[g][c] = 1;  // a relay or a knot receiver
+        if (!ga.fallback[c]) continue;
+        index[g][c] = static_cast<int>(knots.size());
+        knots.emplace_back(static_cast<int>(g), static_cast<int>(c));
+      }
+    }
+    if (knots.empty()) return;
+    std::vector<KnotRow> rows(knots.size());
+    for (std::size_t k = 0; k < knots.size(); ++k)
+      rows[k] = knot_row(a, usable, index, knots[k].first, knots[k].second);
+    for (bool changed = true; changed;) {  // drop rows that lean on receivers without rows
+      changed = false;
+      for (auto& row : rows)
+        if (row.ok)
+          for (const auto& [j, w] : row.knot)
+            if (!rows[static_cast<std::size_t>(j)].ok) {
+              row.ok = false;
+              changed = true;
+              break;
+            }
+    }
+    std::vector<int> unknown(knots.size(), -1);  // row index among the solved ones
+    std::vector<std::size_t> solved;
+    for (std::size_t k = 0; k < knots.size(); ++k)
+      if (rows[k].ok) {
+        unknown[k] = static_cast<int>(solved.size());
+        solved.push_back(k);
+      }
+    if (solved.empty()) return;
+    std::map<std::pair<int, int>, int> column;  // active donor -> column of W_ka
+    for (std::size_t k : solved)
+      for (const auto& [donor, w] : rows[k].known) column.emplace(donor, 0);
+    std::vector<std::pair<int, int>> donors;
+    for (auto& [donor, col] : column) {
+      col = static_cast<int>(donors.size());
+      donors.push_back(donor);
+    }
+    const auto m = static_cast<Eigen::Index>(solved.size());
+    std::vector<Eigen::Triplet<double>> b, r;
+    for (Eigen::Index i = 0; i < m; ++i) {
+      const KnotRow& row = rows[solved[static_cast<std::size_t>(i)]];
+      b.emplace_back(i, i, 1.0);
+      for (const auto& [j, w] : row.knot)
+        b.emplace_back(i, unknown[static_cast<std::size_t>(j)], -w);
+      for (const auto& [donor, w] : row.known) r.emplace_back(i, column.at(donor), w);
+    }
+    Eigen::SparseMatrix<double> B(m, m), R(m, static_cast<Eigen::Index>(donors.size()));
+    B.setFromTriplets(b.begin(), b.end());
+    R.setFromTriplets(r.begin(), r.end());
+    Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(B);
+    if (lu.info() != Eigen::Success) return;
+    const Eigen::MatrixXd X = lu.solve(Eigen::MatrixXd(R));
+    if (lu.info() != Eigen::Success || !X.allFinite()) return;
+    std::vector<std::map<int, std::vector<Entry>>> stencils(grids.size());
+    for (Eigen::Index i = 0; i < m; ++i) {
+      const auto [g, c] = knots[solved[static_cast<std::size_t>(i)]];
+      auto& entries = stencils[static_cast<std::size_t>(g)][c];
+      for (Eigen::Index j = 0; j < X.cols(); ++j)
+        if (X(i, j) != 0.0)
+          entries.push_back({donors[static_cast<std::size_t>(j)].first,
+                             donors[static_cast<std::size_t>(j)].second, X(i, j)});
+    }
+    for (std::size_t g = 0; g < grids.size(); ++g)
+      if (!stencils[g].empty()) replace_stencils(a.grids[g], stencils[g]);
+  }
+
+  // The containing stencil of fallback receiver c of grid g in the first other grid (priority
+  // order) whose cell containing it is `usable` (a relay, or for solve_knots another knot
+  // receiver), grown through active and usable cells: a relay's weight is spread over its own
+  // donors, a knot receiver's (index >= 0) kept as an unknown.
+  KnotRow knot_row(const Assembly& a, const std::vector<std::vector<char>>& usable,
+                   const std::vector<std::vector<int>>& index, int g, int c) const {
+    KnotRow row;
+    const Eigen::Vector3d x = body(g, c);
+    for (int h : order) {
+      if (h == g) continue;
+      const auto hu = static_cast<std::size_t>(h);
+      const auto& hd = grids[hu];
+      const auto& ha = a.grids[hu];
+      const Eigen::Vector3d xl = hd.grid->placement.inverse() * x;
+      const int loc = locate_cell(hd, xl, last_found(h));
+      remember(h, loc);
+      std::vector<int> cells;
+      std::vector<double> w;
+      if (loc < 0 || !usable[hu][static_cast<std::size_t>(loc)] ||
+          !stencil_in(h, xl, loc, true, ha.status, cells, w, &usable[hu]))
+        continue;
+      for (std::size_t i = 0; i < cells.size(); ++i) {
+        const auto cu = static_cast<std::size_t>(cells[i]);
+        if (ha.status[cu] == CellStatus::active) {
+          row.known[{h, cells[i]}] += w[i];
+        } else if (index[hu][cu] >= 0) {
+          row.knot[index[hu][cu]] += w[i];
+        } else {
+          for (int k = ha.stencil_offsets[cu]; k < ha.stencil_offsets[cu + 1]; ++k) {
+            const auto ku = static_cast<std::size_t>(k);
+            row.known[{ha.stencil_grids[ku], ha.stencil_cells[ku]}] +=
+                w[i] * ha.stencil_weights[ku];
+          }
+        }
+      }
+      row.ok = true;
+      return row;
+    }
+    return row;
+  }
+
+  // One pass of chain(): true if it chained any receiver.
+  bool chain_once(Assembly& a) const {
+    std::vector<std::vector<char>> relay(grids.size());
+    for (std::size_t h = 0; h < grids.size(); ++h) {
+      const auto& ha = a.grids[h];
+      relay[h].assign(ha.status.size(), 0);
+      for (std::size_t c = 0; c < ha.status.size(); ++c)
+        relay[h][c] = ha.status[c] == CellStatus::fringe && !ha.fallback[c] ? 1 : 0;
+    }
+    std::vector<std::vector<int>> no_knots(grids.size());
+    for (std::size_t h = 0; h < grids.size(); ++h) no_knots[h].assign(relay[h].size(), -1);
+    std::vector<std::map<int, std::vector<Entry>>> chained(grids.size());
+    for (std::size_t g = 0; g < grids.size(); ++g)
+      for (std::size_t c = 0; c < a.grids[g].status.size(); ++c)
+        if (a.grids[g].status[c] == CellStatus::fringe && a.grids[g].fallback[c]) {
+          const KnotRow row =
+              knot_row(a, relay, no_knots, static_cast<int>(g), static_cast<int>(c));
+          if (!row.ok) continue;
+          auto& entries = chained[g][static_cast<int>(c)];
+          for (const auto& [donor, w] : row.known)
+            entries.push_back({donor.first, donor.second, w});
+        }
+    bool any = false;
+    for (std::size_t g = 0; g < grids.size(); ++g)
+      if (!chained[g].empty()) {
+        replace_stencils(a.grids[g], chained[g]);
+        any = true;
+      }
+    return any;
+  }
+
+  // Rebuilds a grid's stencil arrays with the chained stencils in place of the fallbacks.
+  static void replace_stencils(GridAssembly& ga, const std::map<int, std::vector<Entry>>& chained) {
+    std::vector<int> offsets{0}, grids_out, cells_out;
+    std::vector<double> weights_out;
+    for (std::size_t c = 0; c + 1 < ga.stencil_offsets.size(); ++c) {
+      const auto it = chained.find(static_cast<int>(c));
+      if (it == chained.end()) {
+        for (int k = ga.stencil_offsets[c]; k < ga.stencil_offsets[c + 1]; ++k) {
+          const auto ku = static_cast<std::size_t>(k);
+          grids_out.push_back(ga.stencil_grids[ku]);
+          cells_out.push_back(ga.stencil_cells[ku]);
+          weights_out.push_back(ga.stencil_weights[ku]);
+        }
+      } else {
+        for (const Entry& e : it->second) {
+          grids_out.push_back(e.grid);
+          cells_out.push_back(e.cell);
+          weights_out.push_back(e.weight);
+        }
+        ga.fallback[c] = 0;
+        ga.chained[c] = 1;
+      }
+      offsets.push_back(static_cast<int>(cells_out.size()));
+    }
+    ga.stencil_offsets = std::move(offsets);
+    ga.stencil_grids = std::move(grids_out);
+    ga.stencil_cells = std::move(cells_out);
+    ga.stencil_weights = std::move(weights_out);
   }
 
   // After a small move, the previous stencil of a receiver is refitted (new weights, same cells)
@@ -738,7 +988,8 @@ struct OversetAssembler::Impl {
   bool refit(const Assembly& a, const GridAssembly& pg, int g, int c, std::vector<int>& cells,
              std::vector<double>& w) const {
     const auto cu = static_cast<std::size_t>(c);
-    if (pg.status[cu] != CellStatus::fringe || pg.donor_grid[cu] < 0) return false;
+    if (pg.status[cu] != CellStatus::fringe || pg.donor_grid[cu] < 0 || pg.chained[cu])
+      return false;
     const bool fallback = pg.fallback[cu] != 0;
     const int dg = pg.donor_grid[cu];
     const auto& hd = grids[static_cast<std::size_t>(dg)];
@@ -768,8 +1019,8 @@ struct OversetAssembler::Impl {
                           const std::vector<std::vector<char>>& redo, std::size_t g,
                           std::size_t c) const {
     const auto& pg = previous.grids[g];
-    if (pg.status[c] != CellStatus::fringe) return false;
-    if (grids[g].fin >= 0) return false;  // the receiver moved
+    if (pg.status[c] != CellStatus::fringe || pg.chained[c]) return false;  // chained: redone
+    if (grids[g].fin >= 0) return false;                                    // the receiver moved
     const int dg = pg.donor_grid[c];
     if (dg < 0 || grids[static_cast<std::size_t>(dg)].fin >= 0) return false;  // donor moved
     const auto& ds = a.grids[static_cast<std::size_t>(dg)].status;

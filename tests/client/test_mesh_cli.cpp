@@ -30,15 +30,12 @@ TEST(MeshCli, WritesGridsAndReport) {
   EXPECT_EQ(report["total_cells"].get<long long>(), total);
   EXPECT_EQ(report["grids"].size(), 6U);  // hull, four fins, background
   EXPECT_DOUBLE_EQ(report["fin_deflections_deg"][0].get<double>(), 30.0);
-  // The overset assembly ran: each component grid has fringe cells round its outer boundary.
-  // Some take fallback donors (at the fin-hull junction), never more than there are fringe cells.
-  int fallbacks = 0;
+  // The overset assembly ran: each component grid has fringe cells round its outer boundary,
+  // and at 30 deg none takes a fallback donor (docs/mesher.md).
   for (const auto& g : report["grids"]) {
     EXPECT_GT(g["overset"]["fringe"].get<int>(), 0) << g["name"];
-    EXPECT_LE(g["overset"]["fallback"].get<int>(), g["overset"]["fringe"].get<int>()) << g["name"];
-    fallbacks += g["overset"]["fallback"].get<int>();
+    EXPECT_EQ(g["overset"]["fallback"].get<int>(), 0) << g["name"];
   }
-  EXPECT_GT(fallbacks, 0);
   std::ifstream vtm(out / "mesh.vtm");
   const std::string text((std::istreambuf_iterator<char>(vtm)), {});
   EXPECT_THAT(text, HasSubstr("file=\"upper_rudder.vtu\""));

@@ -23,7 +23,7 @@ const geometry::Vehicle& remus() {
 }
 
 struct Check {
-  int fallbacks = 0;
+  int fallbacks = 0, chained = 0;
   int orphans = 0, fringe = 0, bad_donor_status = 0, largest_stencil = 0;
   double worst_sum = 0, worst_linear = 0;  // in units of the round-off bound of each sum
   // Largest distance from a fringe centre to its nearest stencil centre, in that cell's size
@@ -31,8 +31,9 @@ struct Check {
   double farthest_fallback = 0;
 };
 
-// Every fringe stencil: active donor cells, weights summing to one, and the linear field
-// f = 3 + 2 x - 5 y + 7 z (body frame) reproduced at the fringe centre.
+// Every fringe stencil: active donor cells (in the grid each entry names: a chained stencil spans
+// several), weights summing to one, and the linear field f = 3 + 2 x - 5 y + 7 z (body frame)
+// reproduced at the fringe centre.
 std::vector<GridGeometry> geometries(const GridSystem& sys) {
   std::vector<GridGeometry> out;
   for (const Grid* g : sys.grids()) out.push_back(compute_geometry(*g));
@@ -48,11 +49,11 @@ Check check(const OversetAssembler& asmb, const Assembly& a, const std::vector<G
     for (std::size_t c = 0; c < ga.status.size(); ++c) {
       if (ga.status[c] != CellStatus::fringe) continue;
       ++r.fringe;
-      const int dg = ga.donor_grid[c];
+      r.chained += ga.chained[c];
       double sum = 0, value = 0, sum_abs = 0, value_abs = 0;
       for (int k = ga.stencil_offsets[c]; k < ga.stencil_offsets[c + 1]; ++k) {
         const auto ku = static_cast<std::size_t>(k);
-        const int d = ga.stencil_cells[ku];
+        const int dg = ga.stencil_grids[ku], d = ga.stencil_cells[ku];
         if (a.grids[static_cast<std::size_t>(dg)].status[static_cast<std::size_t>(d)] !=
             CellStatus::active)
           ++r.bad_donor_status;
@@ -69,6 +70,7 @@ Check check(const OversetAssembler& asmb, const Assembly& a, const std::vector<G
         ++r.fallbacks;
         double nearest = std::numeric_limits<double>::infinity();
         for (int k = ga.stencil_offsets[c]; k < ga.stencil_offsets[c + 1]; ++k) {
+          const int dg = ga.stencil_grids[static_cast<std::size_t>(k)];
           const int d = ga.stencil_cells[static_cast<std::size_t>(k)];
           const double size =
               std::cbrt(geo[static_cast<std::size_t>(dg)].cell_volume[static_cast<std::size_t>(d)]);
@@ -79,11 +81,14 @@ Check check(const OversetAssembler& asmb, const Assembly& a, const std::vector<G
         }
         r.farthest_fallback = std::max(r.farthest_fallback, nearest);
       }
-      // Round-off: the weights solve a 4 x 4 system built from n <= 32 stencil cells and are
-      // summed again, so Wilkinson's n^2 eps (about 1e3 eps) times the sum of the magnitudes.
+      // Round-off: the weights solve a 4 x 4 system built from n stencil cells and are summed
+      // again, so Wilkinson's n^2 eps times the sum of the magnitudes, at least 1024 eps (n = 32);
+      // a chained stencil composes two such levels, and its n counts the donors of both.
       const double eps = std::numeric_limits<double>::epsilon();
-      r.worst_sum = std::max(r.worst_sum, std::abs(sum - 1) / (1024 * eps * sum_abs));
-      r.worst_linear = std::max(r.worst_linear, std::abs(value - exact) / (1024 * eps * value_abs));
+      const double n = ga.stencil_offsets[c + 1] - ga.stencil_offsets[c];
+      const double bound = std::max(1024.0, n * n) * eps;
+      r.worst_sum = std::max(r.worst_sum, std::abs(sum - 1) / (bound * sum_abs));
+      r.worst_linear = std::max(r.worst_linear, std::abs(value - exact) / (bound * value_abs));
     }
   }
   return r;
@@ -92,8 +97,8 @@ Check check(const OversetAssembler& asmb, const Assembly& a, const std::vector<G
 
 // Deflections -35 .. 35 deg in 5 deg steps, all fins together: no orphans, donors are active
 // cells, and weights sum to one and reproduce a linear field to round-off. Fringe cells whose
-// containing cell in every other grid is not active take fallback stencils (docs/mesher.md, the
-// open defect): their share must not grow past what the grids gave when this was written.
+// containing cell in every other grid is neither active nor a relay take fallback stencils
+// (docs/mesher.md): their share must not grow past what the grids gave when this was written.
 void sweep(const char* preset, double max_fallback_share) {
   const MeshSettings settings = mesh_preset(preset, remus());
   GridSystem sys = build_grid_system(remus(), settings);
@@ -104,10 +109,10 @@ void sweep(const char* preset, double max_fallback_share) {
     const Assembly a = asmb.assemble(std::vector<double>(sys.fins.size(), d));
     const Check r = check(asmb, a, geo);
     std::printf(
-        "%s %+3d deg: %d fringe (%d with fallback donors, nearest donor centre at most %.2f "
-        "cell sizes away), %d orphans, |sum w - 1| and linear error at most %.2f and %.2f of "
-        "their round-off bounds, stencils of at most %d cells (%.2f s)\n",
-        preset, deg, r.fringe, r.fallbacks, r.farthest_fallback, r.orphans, r.worst_sum,
+        "%s %+3d deg: %d fringe (%d chained, %d with fallback donors, nearest donor centre at "
+        "most %.2f cell sizes away), %d orphans, |sum w - 1| and linear error at most %.2f and "
+        "%.2f of their round-off bounds, stencils of at most %d cells (%.2f s)\n",
+        preset, deg, r.fringe, r.chained, r.fallbacks, r.farthest_fallback, r.orphans, r.worst_sum,
         r.worst_linear, r.largest_stencil, a.seconds);
     EXPECT_GT(r.fringe, 0) << deg;
     EXPECT_LE(r.fallbacks, max_fallback_share * r.fringe) << deg;
@@ -115,7 +120,7 @@ void sweep(const char* preset, double max_fallback_share) {
     EXPECT_EQ(r.bad_donor_status, 0) << deg;
     EXPECT_LE(r.worst_sum, 1.0) << deg;
     EXPECT_LE(r.worst_linear, 1.0) << deg;
-    EXPECT_LE(r.largest_stencil, 32) << deg;  // the premise of the round-off bound
+    EXPECT_LE(r.largest_stencil, 16 * 16) << deg;  // a chain of two stencils of at most 16
   }
 }
 
@@ -276,12 +281,12 @@ void coverage(const char* preset) {
 
 #ifdef AUVLOOP_OVERSET_PRESETS
 // Built as test_overset_presets, label slow: the medium and fine presets (0.26 M and 1.15 M
-// cells). Fallback shares at most 0.36 % and 0.036 % when written (docs/mesher.md).
+// cells), no fallback donor at any angle.
 TEST(OversetSlow, MediumFinSweepHasNoOrphans) {
-  sweep("medium", 0.004);
+  sweep("medium", 0.0);
 }
 TEST(OversetSlow, FineFinSweepHasNoOrphans) {
-  sweep("fine", 0.0005);
+  sweep("fine", 0.0);
 }
 TEST(OversetSlow, MediumAndFineCellsCoverTheFluid) {
   coverage("medium");
@@ -294,7 +299,7 @@ TEST(OversetSlow, MediumAndFineUpdatesMatchFullAssemblies) {
 }
 #else
 TEST(Overset, CoarseFinSweepHasNoOrphansAndExactLinearInterpolation) {
-  sweep("coarse", 0.04);  // 1.4 - 3.7 % when written
+  sweep("coarse", 0.001);  // none but 9 of 12,116 at -10 deg when written
 }
 
 TEST(Overset, ActiveAndFringeCellsCoverTheFluid) {

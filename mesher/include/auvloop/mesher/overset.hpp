@@ -24,6 +24,9 @@
 //      lie nearest to the centre, in their cell sizes. Weights: the minimum (inverse-distance
 //      weighted) norm solution of sum w = 1, sum w x = x_fringe, so linear fields are interpolated
 //      exactly, inside or outside the stencil's hull.
+//   5. chains: a fallback receiver whose centre lies in a fringe cell of another grid that has
+//      donors of its own takes the containing stencil there with that cell's stencil composed in
+//      (GridAssembly::chained; its donors, all active, may lie in several grids).
 // Invariants of a result: no donor cell is anything but active; weights sum to one.
 #pragma once
 
@@ -47,11 +50,16 @@ struct GridAssembly {
   // Per cell: 1 when the donors are a fallback (the containing cell was not active; donor_cell is
   // then the stencil's first active cell).
   std::vector<char> fallback;
+  // Per cell: 1 when the stencil is chained: the containing cell of donor_grid is a fringe cell
+  // whose own stencil is composed in, so the donors (all active) may lie in several grids.
+  std::vector<char> chained;
   std::vector<int> stencil_offsets;  // cells + 1
+  std::vector<int> stencil_grids;    // per stencil entry: the donor's grid
   std::vector<int> stencil_cells;
   std::vector<double> stencil_weights;
   [[nodiscard]] int count(CellStatus s) const;
   [[nodiscard]] int fallbacks() const;
+  [[nodiscard]] int chains() const;
 };
 
 struct Assembly {
@@ -71,6 +79,9 @@ struct OversetSettings {
   // When the cell of another grid containing a fringe centre is not active (a fringe or hole cell
   // of that grid), the donors are the active cells within this many face steps of it.
   int fallback_rings = 5;
+  // Fallback receivers inside a fringe cell of another grid that has donors of its own take that
+  // cell's stencil composed in (a chained stencil); each pass reaches one cell further.
+  int chain_passes = 4;
 };
 
 class OversetAssembler {
