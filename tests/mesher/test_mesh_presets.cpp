@@ -41,6 +41,7 @@ void check_preset(const std::string& name, long long target) {
         g->name.c_str(), q.cells, q.min_volume, q.max_non_orthogonality, q.max_skewness,
         q.max_aspect_ratio);
     for (int f : {q.worst_non_orthogonal_face, q.worst_skewed_face}) {
+      if (f < 0) continue;  // no face is non-orthogonal (or skewed) at all: a Cartesian box
       const auto fs = static_cast<std::size_t>(f);
       std::printf("    face %d (%s) at (%.4f, %.4f, %.4f) m\n", f,
                   f < g->internal_faces() ? "internal" : "boundary", geo.face_centre[fs].x(),
