@@ -206,7 +206,8 @@ int walk(const GridData& d, const Eigen::Vector3d& x, int c) {
 // The cell containing x (grid frame): a walk from `seed` (a previous donor), else from the nearest
 // cell centre (k-d tree). A walk can end on the boundary although x is inside the grid (the fluid
 // round a body is not convex: a walk from a distant seed can run into the wall), or circle among
-// warped cells; then the 16 nearest cells are tried. -1: x is in no cell.
+// warped cells, or stop in the gap their face planes leave; then walks from the 16 nearest cells,
+// and last those cells by their face planes. -1: x is in no cell.
 int locate_cell(const GridData& d, const Eigen::Vector3d& x, int seed) {
   if (!d.local_box.contains(x)) return -1;
   const KPoint q(x.x(), x.y(), x.z());
@@ -220,6 +221,10 @@ int locate_cell(const GridData& d, const Eigen::Vector3d& x, int seed) {
     if (c >= 0) return c;
   }
   KSearch search(*d.tree, q, 16);
+  for (const auto& hit : search) {  // walks from the nearest cells: warped cells leave gaps
+    const int c = walk(d, x, boost::get<1>(hit.first));
+    if (c >= 0) return c;
+  }
   int best_cell = -1;
   double best = kInf;
   for (const auto& hit : search) {
