@@ -8,6 +8,7 @@
 #include <map>
 #include <queue>
 #include <stdexcept>
+#include <utility>
 
 #include <CGAL/Orthogonal_k_neighbor_search.h>
 #include <CGAL/Search_traits_3.h>
@@ -221,7 +222,9 @@ int locate_cell(const GridData& d, const Eigen::Vector3d& x, int seed) {
     if (c >= 0) return c;
   }
   KSearch search(*d.tree, q, 16);
+  bool first = true;                // the nearest cell's walk has just failed
   for (const auto& hit : search) {  // walks from the nearest cells: warped cells leave gaps
+    if (std::exchange(first, false)) continue;
     const int c = walk(d, x, boost::get<1>(hit.first));
     if (c >= 0) return c;
   }

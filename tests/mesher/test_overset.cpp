@@ -46,10 +46,10 @@ Check check(const OversetAssembler& asmb, const Assembly& a, const std::vector<G
   for (std::size_t g = 0; g < a.grids.size(); ++g) {
     const auto& ga = a.grids[g];
     r.orphans += ga.count(CellStatus::orphan);
+    r.chained += ga.chains();
     for (std::size_t c = 0; c < ga.status.size(); ++c) {
       if (ga.status[c] != CellStatus::fringe) continue;
       ++r.fringe;
-      r.chained += ga.chained[c];
       double sum = 0, value = 0, sum_abs = 0, value_abs = 0;
       for (int k = ga.stencil_offsets[c]; k < ga.stencil_offsets[c + 1]; ++k) {
         const auto ku = static_cast<std::size_t>(k);
