@@ -8,9 +8,14 @@
 //           -U_inf x on the upstream part of its outer boundary (U fixed, p zero gradient), p = 0
 //           and zero-gradient U on the downstream part, no-slip on the hull; sea water.
 //   bench_cfd [--case cavity|hull] [--preset coarse] [--n N] [--steps K] [--outer M]
-//             [--correctors C] [--pressure cholmod|cholmod-pcg|cg-ic|cg-dic|cg-jacobi]
-//             [--threads T] [--re RE] [--co COURANT] [--2d 1] [--time bdf2|euler]
-//             [--convection van-leer|linear-upwind|upwind]
+//             [--correctors C] [--pressure cholmod|cholmod-pcg|cg-ic|cg-dic|cg-jacobi|cg-amg]
+//             [--momentum gauss-seidel|bicgstab|bicgstab-ilut] [--momentum-tolerance TOL]
+//             [--threads T[,T...]] [--repeat R] [--re RE] [--co COURANT] [--2d 1]
+//             [--time bdf2|euler] [--convection van-leer|linear-upwind|upwind]
+// With several thread counts (--threads 1,2) each runs in turn on the same mesh, R times over
+// (--repeat), and the speed-ups against the first are printed run by run: a ratio measured in
+// the same process at the same machine load. The first step of each run (multigrid setup, first
+// touch of every array) is timed apart; the figures are those of the steps after it.
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -33,26 +38,22 @@ namespace fv = engine::fv;
 namespace {
 struct Options {
   std::string case_name = "cavity", preset = "coarse", pressure, time = "bdf2";
-  std::string convection = "van-leer";
-  int n = 32, steps = 10, outer = 1, correctors = 2, threads = 1, two_d = 0;
-  double re = 100, co = 1;
+  std::string convection = "van-leer", momentum, threads = "1";
+  int n = 32, steps = 10, outer = 1, correctors = 2, two_d = 0, repeat = 1;
+  double re = 100, co = 1, momentum_tolerance = 0;
 };
 
 Options parse(int argc, char** argv) {
   Options o;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string key = argv[i], v = argv[i + 1];
-    std::map<std::string, std::string*> strings{{"--case", &o.case_name},
-                                                {"--preset", &o.preset},
-                                                {"--pressure", &o.pressure},
-                                                {"--time", &o.time},
-                                                {"--convection", &o.convection}};
-    std::map<std::string, int*> ints{{"--n", &o.n},
-                                     {"--steps", &o.steps},
-                                     {"--outer", &o.outer},
-                                     {"--correctors", &o.correctors},
-                                     {"--threads", &o.threads},
-                                     {"--2d", &o.two_d}};
+    std::map<std::string, std::string*> strings{
+        {"--case", &o.case_name}, {"--preset", &o.preset},         {"--pressure", &o.pressure},
+        {"--time", &o.time},      {"--convection", &o.convection}, {"--momentum", &o.momentum},
+        {"--threads", &o.threads}};
+    std::map<std::string, int*> ints{{"--n", &o.n},           {"--steps", &o.steps},
+                                     {"--outer", &o.outer},   {"--correctors", &o.correctors},
+                                     {"--repeat", &o.repeat}, {"--2d", &o.two_d}};
     if (strings.contains(key))
       *strings[key] = v;
     else if (ints.contains(key))
@@ -61,6 +62,8 @@ Options parse(int argc, char** argv) {
       o.re = std::atof(v.c_str());
     else if (key == "--co")
       o.co = std::atof(v.c_str());
+    else if (key == "--momentum-tolerance")
+      o.momentum_tolerance = std::atof(v.c_str());
     else {
       std::fprintf(stderr, "unknown option %s\n", key.c_str());
       std::exit(2);
@@ -86,12 +89,79 @@ mesher::Grid cavity_grid(const Options& o) {
                                patches, "cavity");
 }
 
+struct Result {
+  double per_step = 0, first_step = 0, assembly = 0, momentum = 0, pressure = 0, gradient = 0;
+  double max_co = 0, pressure_iterations = 0, momentum_iterations = 0;
+};
+
+// One run on `threads` threads: the first step (multigrid setup, first touch of every array) is
+// timed apart, the figures are those of the steps after it (as icoFoam's in
+// bench/openfoam_cavity.sh, from its second step on).
+Result run(const Options& o, const fv::Mesh& mesh, int threads, bool hull,
+           const Eigen::Vector3d& u_inf, const fv::PimpleSettings& s) {
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
+                            static_cast<std::size_t>(threads));
+  fv::Pimple flow(mesh, s);
+  if (hull) {
+    bench::set_freestream(flow, mesh, u_inf);
+  } else {
+    for (const char* wall : {"left", "right", "bottom", "front", "back"})
+      if (!o.two_d || wall[0] == 'l' || wall[0] == 'r' || wall[0] == 'b')
+        flow.U.fix(mesh, wall, {0, 0, 0});
+    flow.U.fix(mesh, "lid", {1, 0, 0});
+  }
+  flow.initialise();
+  Result res;
+  const auto t_first = std::chrono::steady_clock::now();
+  flow.step();
+  const auto t0 = std::chrono::steady_clock::now();
+  res.first_step = std::chrono::duration<double>(t0 - t_first).count();
+  for (int k = 1; k < o.steps; ++k) {
+    const auto r = flow.step();
+    res.assembly += r.seconds_assembly;
+    res.momentum += r.seconds_momentum;
+    res.pressure += r.seconds_pressure;
+    res.gradient += r.seconds_gradient;
+    res.pressure_iterations += r.pressure_iterations;
+    res.momentum_iterations += r.momentum_iterations;
+    res.max_co = std::max(res.max_co, r.max_courant);
+  }
+  const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const int timed = o.steps - 1;
+  res.per_step = total / timed;
+  for (double* v : {&res.assembly, &res.momentum, &res.pressure, &res.gradient}) *v /= total;
+  res.pressure_iterations /= timed;
+  res.momentum_iterations /= timed;
+  return res;
+}
+
+std::vector<int> thread_list(const std::string& s) {
+  std::vector<int> t;
+  std::size_t pos = 0;
+  while (pos <= s.size()) {
+    const auto comma = s.find(',', pos);
+    const int v = std::atoi(s.substr(pos, comma - pos).c_str());
+    if (v < 1) {
+      std::fprintf(stderr, "--threads: a comma-separated list of thread counts >= 1, got %s\n",
+                   s.c_str());
+      std::exit(2);
+    }
+    t.push_back(v);
+    if (comma == std::string::npos) break;
+    pos = comma + 1;
+  }
+  return t;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   const Options o = parse(argc, argv);
-  tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
-                            static_cast<std::size_t>(o.threads));
+  if (o.steps < 2) {
+    std::fprintf(stderr, "--steps must be at least 2 (the first step is timed apart)\n");
+    return 2;
+  }
+  const std::vector<int> threads = thread_list(o.threads);
   const bool hull = o.case_name == "hull";
   const Eigen::Vector3d u_inf(-1.54, 0, 0);  // REMUS 100 design speed, body frame (x forward)
   const mesher::Grid grid = hull ? bench::hull_freestream_grid(o.preset, u_inf) : cavity_grid(o);
@@ -103,49 +173,47 @@ int main(int argc, char** argv) {
   s.bdf2 = o.time == "bdf2";
   s.convection = convection(o.convection);
   if (!o.pressure.empty()) s.pressure_solver = fv::symmetric_method_from_string(o.pressure);
+  if (!o.momentum.empty()) s.momentum_solver = fv::asymmetric_method_from_string(o.momentum);
   s.tolerance = 1e-6;
+  if (o.momentum_tolerance > 0) s.momentum_tolerance = o.momentum_tolerance;
   s.max_courant = 1e9;  // a benchmark: report, do not stop
   // Courant number `co` of the free stream in the smallest cell, or at the lid speed.
   s.dt = hull ? bench::freestream_dt(mesh, u_inf, o.co) : o.co / o.n;
-  fv::Pimple flow(mesh, s);
-  const std::string pressure = fv::to_string(*flow.settings().pressure_solver);
-  if (hull) {
-    bench::set_freestream(flow, mesh, u_inf);
-  } else {
-    for (const char* wall : {"left", "right", "bottom", "front", "back"})
-      if (!o.two_d || wall[0] == 'l' || wall[0] == 'r' || wall[0] == 'b')
-        flow.U.fix(mesh, wall, {0, 0, 0});
-    flow.U.fix(mesh, "lid", {1, 0, 0});
-  }
-  flow.initialise();
-  double assembly = 0, momentum = 0, pressure_s = 0, gradient = 0, max_co = 0;
-  int pressure_iterations = 0;
-  const auto t0 = std::chrono::steady_clock::now();
-  for (int k = 0; k < o.steps; ++k) {
-    const auto r = flow.step();
-    assembly += r.seconds_assembly;
-    momentum += r.seconds_momentum;
-    pressure_s += r.seconds_pressure;
-    gradient += r.seconds_gradient;
-    pressure_iterations += r.pressure_iterations;
-    max_co = std::max(max_co, r.max_courant);
-  }
-  const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const double cells = mesh.cells();
-  const double per_step = 1e6 * total / (cells * o.steps);
+  const std::string pressure = fv::to_string(*fv::Pimple(mesh, s).settings().pressure_solver);
   std::printf(
-      "%s%s n=%d cells=%d steps=%d outer=%d correctors=%d pressure=%s time=%s "
-      "convection=%s threads=%d dt=%.3g max Co=%.3g\n",
+      "%s%s n=%d cells=%d steps=%d (1 + %d timed) outer=%d correctors=%d pressure=%s momentum=%s "
+      "time=%s convection=%s dt=%.3g\n",
       hull ? ("hull-" + o.preset).c_str() : "cavity", hull ? "" : (o.two_d ? "2d" : "3d"),
-      hull ? 0 : o.n, mesh.cells(), o.steps, o.outer, o.correctors, pressure.c_str(),
-      o.time.c_str(), o.convection.c_str(), o.threads, s.dt, max_co);
-  std::printf("  us/cell/step %.3f   us/cell/outer %.3f   s/step %.4f\n", per_step,
-              per_step / o.outer, total / o.steps);
-  std::printf(
-      "  phase split: assembly %.1f %%, momentum solve %.1f %%, pressure %.1f %%, other %.1f %%; "
-      "gradients (within these) %.1f %%   (pressure Krylov iterations per step %.1f)\n",
-      100 * assembly / total, 100 * (momentum - assembly) / total, 100 * pressure_s / total,
-      100 * (total - momentum - pressure_s) / total, 100 * gradient / total,
-      static_cast<double>(pressure_iterations) / o.steps);
+      hull ? 0 : o.n, mesh.cells(), o.steps, o.steps - 1, o.outer, o.correctors, pressure.c_str(),
+      fv::to_string(s.momentum_solver), o.time.c_str(), o.convection.c_str(), s.dt);
+  std::vector<Result> results;
+  for (int r = 0; r < o.repeat; ++r) {
+    for (const int t : threads) {
+      const Result res = run(o, mesh, t, hull, u_inf, s);
+      results.push_back(res);
+      const double us = 1e6 * res.per_step / mesh.cells();
+      std::printf(
+          "threads=%d  us/cell/step %.3f   us/cell/outer %.3f   s/step %.4f   first step %.3f s   "
+          "max Co %.3g\n",
+          t, us, us / o.outer, res.per_step, res.first_step, res.max_co);
+      std::printf(
+          "  phase split: assembly %.1f %%, momentum solve %.1f %%, pressure %.1f %%, other %.1f "
+          "%%; gradients (within these) %.1f %%   (iterations per step: pressure %.1f, momentum "
+          "%.1f)\n",
+          100 * res.assembly, 100 * (res.momentum - res.assembly), 100 * res.pressure,
+          100 * (1 - res.momentum - res.pressure), 100 * res.gradient, res.pressure_iterations,
+          res.momentum_iterations);
+    }
+  }
+  if (threads.size() > 1) {  // speed-ups against the first thread count, run by run
+    for (int r = 0; r < o.repeat; ++r) {
+      const auto base = results[static_cast<std::size_t>(r) * threads.size()].per_step;
+      std::printf("speed-up against %d thread(s), run %d:", threads[0], r + 1);
+      for (std::size_t k = 1; k < threads.size(); ++k)
+        std::printf("  %d threads %.3f", threads[k],
+                    base / results[static_cast<std::size_t>(r) * threads.size() + k].per_step);
+      std::printf("\n");
+    }
+  }
   return 0;
 }

@@ -1,190 +1,156 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "amg_pcg.hpp"
 
+#include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <stdexcept>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 #include <Eigen/Dense>
 
+#include "parallel.hpp"
+
 namespace auvloop::engine::fv {
 
 namespace {
-// Below this many cells a level is solved directly (dense Cholesky: n^3 / 3 flops per setup).
+// Below this many rows a level is solved directly (dense Cholesky: n^3 / 3 flops per setup).
 constexpr int kCoarsestCells = 64;
-// Coarsening (two pairings) that keeps more than this fraction of the cells no longer pays for a
-// level; with about a quarter of the cells per level the K-cycle costs about twice a V-cycle.
+// Coarsening (two pairings) that keeps more than this fraction of the rows no longer pays for a
+// level; with about a quarter of the rows per level the K-cycle costs about twice a V-cycle.
 constexpr double kMinReduction = 0.6;
 // The K-cycle skips its second Krylov step when the first reduced the residual this much.
 constexpr double kKcycleTolerance = 0.25;
 constexpr int kMaxLevels = 40;
-// A cell pairs only with a free neighbour coupled at least this strongly relative to its
+// A row pairs only with a free neighbour coupled at least this strongly relative to its
 // strongest coupling (Notay's beta): on stretched cells, pairs across the weak direction make
 // coarse levels that correct nothing (measured on a graded, sheared 32^3 box with zero-gradient
 // boundaries: 134 iterations without the test, 51 with it).
 constexpr double kStrongCoupling = 0.25;
 
-double dot(std::span<const double> a, std::span<const double> b) {
-  double s = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) s += a[i] * b[i];
-  return s;
+// Pairs each row with its most strongly coupled free neighbour (ties: the first in the row's
+// entry order, so the result is deterministic) if that coupling is strong; a row whose
+// neighbours are all taken joins the pair of its strongest neighbour. Returns the number of
+// aggregates; agg[i] is row i's.
+int pair_rows(const BlockCsr& A, std::vector<int>& agg) {
+  const int n = A.rows();
+  agg.assign(static_cast<std::size_t>(n), -1);
+  int count = 0;
+  for (int i = 0; i < n; ++i) {
+    if (agg[static_cast<std::size_t>(i)] >= 0) continue;
+    int free_best = -1, any_best = -1;
+    double free_w = -1, any_w = -1;
+    for (int k = A.row_begin(i); k < A.row_end(i); ++k) {
+      const int j = A.column(k);
+      const double w = std::abs(A.value[static_cast<std::size_t>(k)]);
+      if (agg[static_cast<std::size_t>(j)] < 0 && w > free_w) {
+        free_w = w;
+        free_best = j;
+      }
+      if (w > any_w) {
+        any_w = w;
+        any_best = j;
+      }
+    }
+    auto& a = agg[static_cast<std::size_t>(i)];
+    if (free_best >= 0 && free_w >= kStrongCoupling * any_w) {
+      a = agg[static_cast<std::size_t>(free_best)] = count++;
+    } else if (free_best >= 0) {
+      a = count++;  // only weakly coupled to what is free: a pair would coarsen badly
+    } else if (any_best >= 0) {
+      a = agg[static_cast<std::size_t>(any_best)];
+    } else {
+      a = count++;  // an isolated row
+    }
+  }
+  return count;
 }
 
-// One level: a symmetric matrix in LDU form on its own face list, with the cell adjacency for
-// Gauss-Seidel sweeps, the map to the next coarser level and work vectors.
+// The map from a level to the next coarser one: the aggregates, their members, and per fine
+// entry the coarse entry it adds to (-1: the coarse diagonal).
+struct Restriction {
+  std::vector<int> agg, member_start, member, target;
+
+  // The coarse matrix's pattern for the aggregates `agg` of A's rows (nc of them).
+  BlockCsr build(const BlockCsr& A, std::vector<int> aggregates, int nc) {
+    agg = std::move(aggregates);
+    const int n = A.rows();
+    member_start.assign(static_cast<std::size_t>(nc) + 1, 0);
+    for (int a : agg) ++member_start[static_cast<std::size_t>(a) + 1];
+    for (std::size_t I = 0; I < static_cast<std::size_t>(nc); ++I)
+      member_start[I + 1] += member_start[I];
+    member.resize(static_cast<std::size_t>(n));
+    std::vector<int> fill(member_start.begin(), member_start.end() - 1);
+    for (int i = 0; i < n; ++i)
+      member[static_cast<std::size_t>(
+          fill[static_cast<std::size_t>(agg[static_cast<std::size_t>(i)])]++)] = i;
+    std::vector<int> row_start(static_cast<std::size_t>(nc) + 1, 0), columns, row;
+    for (int I = 0; I < nc; ++I) {
+      row.clear();
+      for (int m = member_start[static_cast<std::size_t>(I)];
+           m < member_start[static_cast<std::size_t>(I) + 1]; ++m) {
+        const int i = member[static_cast<std::size_t>(m)];
+        for (int k = A.row_begin(i); k < A.row_end(i); ++k) {
+          const int J = agg[static_cast<std::size_t>(A.column(k))];
+          if (J != I && std::find(row.begin(), row.end(), J) == row.end()) row.push_back(J);
+        }
+      }
+      columns.insert(columns.end(), row.begin(), row.end());
+      row_start[static_cast<std::size_t>(I) + 1] = static_cast<int>(columns.size());
+    }
+    BlockCsr C(nc, row_start, columns);
+    target.assign(static_cast<std::size_t>(A.entries()), -1);
+    for (int i = 0; i < n; ++i) {
+      const int I = agg[static_cast<std::size_t>(i)];
+      for (int k = A.row_begin(i); k < A.row_end(i); ++k) {
+        const int J = agg[static_cast<std::size_t>(A.column(k))];
+        if (J == I) continue;
+        int t = C.row_begin(I);
+        while (C.column(t) != J) ++t;
+        target[static_cast<std::size_t>(k)] = t;
+      }
+    }
+    return C;
+  }
+
+  // C = P^T A P, coarse row by coarse row (members and their entries in a fixed order).
+  void restrict_matrix(const BlockCsr& A, BlockCsr& C) const {
+    parallel_for(
+        C.rows(),
+        [&](int I) {
+          const auto Is = static_cast<std::size_t>(I);
+          for (int t = C.row_begin(I); t < C.row_end(I); ++t)
+            C.value[static_cast<std::size_t>(t)] = 0;
+          double d = 0;
+          for (int m = member_start[Is]; m < member_start[Is + 1]; ++m) {
+            const int i = member[static_cast<std::size_t>(m)];
+            d += A.diag[static_cast<std::size_t>(i)];
+            for (int k = A.row_begin(i); k < A.row_end(i); ++k) {
+              const int t = target[static_cast<std::size_t>(k)];
+              const double a = A.value[static_cast<std::size_t>(k)];
+              if (t < 0) {
+                d += a;
+              } else {
+                C.value[static_cast<std::size_t>(t)] += a;
+              }
+            }
+          }
+          C.diag[Is] = d;
+        },
+        kRowGrain);
+    C.coefficients_changed();
+  }
+};
+
 struct Level {
-  int n = 0;
-  std::vector<int> lo, hi;                         // the two cells of each face
-  std::vector<int> row_start, adj_cell, adj_face;  // per cell: neighbours and shared faces
-  std::vector<double> diag, upper;
-  std::vector<double> row_value,
-      inv_diag;                  // the same by rows (load_rows)                 // coefficients
-  std::vector<int> agg;          // cell -> coarser cell
-  std::vector<int> coarse_face;  // face -> coarser face; -1 inside a pair
-  std::vector<double> x, b, r;   // work
-  std::vector<double> r0, c1, v1, v2;  // work of the K-cycle on this level
-
-  void build_adjacency() {
-    row_start.assign(static_cast<std::size_t>(n) + 1, 0);
-    for (std::size_t f = 0; f < lo.size(); ++f) {
-      ++row_start[static_cast<std::size_t>(lo[f]) + 1];
-      ++row_start[static_cast<std::size_t>(hi[f]) + 1];
-    }
-    for (std::size_t i = 0; i < static_cast<std::size_t>(n); ++i) row_start[i + 1] += row_start[i];
-    adj_cell.resize(2 * lo.size());
-    adj_face.resize(2 * lo.size());
-    std::vector<int> next(row_start.begin(), row_start.end() - 1);
-    for (std::size_t f = 0; f < lo.size(); ++f) {
-      for (const auto& [from, to] : {std::pair{lo[f], hi[f]}, std::pair{hi[f], lo[f]}}) {
-        const auto k = static_cast<std::size_t>(next[static_cast<std::size_t>(from)]++);
-        adj_cell[k] = to;
-        adj_face[k] = static_cast<int>(f);
-      }
-    }
-    for (auto* v : {&x, &b, &r, &r0, &c1, &v1, &v2}) {
+  BlockCsr own;                        // the matrix of a coarse level
+  const BlockCsr* A = nullptr;         // own, or the caller's finest matrix
+  Restriction to_coarse;               // empty on the coarsest level
+  std::vector<double> x, b, scratch;   // the cycle's iterate and right-hand side, sweep scratch
+  std::vector<double> r1, c1, v1, v2;  // the K-cycle's work on this level
+  void allocate(int n) {
+    for (auto* v : {&x, &b, &scratch, &r1, &c1, &v1, &v2})
       v->assign(static_cast<std::size_t>(n), 0.0);
-    }
-  }
-
-  // The coefficients by rows (compressed rows in adjacency order) and the inverse diagonal, from
-  // diag and upper: the sweeps and products then read memory in order.
-  void load_rows() {
-    row_value.resize(adj_face.size());
-    for (std::size_t k = 0; k < adj_face.size(); ++k) {
-      row_value[k] = upper[static_cast<std::size_t>(adj_face[k])];
-    }
-    inv_diag.resize(diag.size());
-    for (std::size_t i = 0; i < diag.size(); ++i) inv_diag[i] = 1.0 / diag[i];
-  }
-
-  // sum_j a_ij v_j over the neighbours j of cell i
-  [[nodiscard]] double off_diagonal(std::size_t i, std::span<const double> v) const {
-    double s = 0;
-    const auto end = static_cast<std::size_t>(row_start[i + 1]);
-    for (auto k = static_cast<std::size_t>(row_start[i]); k < end; ++k) {
-      s += row_value[k] * v[static_cast<std::size_t>(adj_cell[k])];
-    }
-    return s;
-  }
-
-  // y = A v
-  void multiply(std::span<const double> v, std::span<double> y) const {
-    for (std::size_t i = 0; i < static_cast<std::size_t>(n); ++i) {
-      y[i] = diag[i] * v[i] + off_diagonal(i, v);
-    }
-  }
-
-  void relax_cell(std::size_t i) { x[i] = (b[i] - off_diagonal(i, x)) * inv_diag[i]; }
-  void sweep_forward() {
-    for (std::size_t i = 0; i < static_cast<std::size_t>(n); ++i) relax_cell(i);
-  }
-  void sweep_backward() {
-    for (std::size_t i = static_cast<std::size_t>(n); i-- > 0;) relax_cell(i);
-  }
-
-  // Pairs each cell with its most strongly coupled free neighbour (ties: the first in face
-  // order, so the result is deterministic) if that coupling is strong; a cell whose neighbours
-  // are all taken joins the pair of its strongest neighbour. Returns the number of aggregates.
-  int pair_cells() {
-    agg.assign(static_cast<std::size_t>(n), -1);
-    int count = 0;
-    for (std::size_t i = 0; i < static_cast<std::size_t>(n); ++i) {
-      if (agg[i] >= 0) continue;
-      int free_best = -1, any_best = -1;
-      double free_w = -1, any_w = -1;
-      for (auto k = static_cast<std::size_t>(row_start[i]);
-           k < static_cast<std::size_t>(row_start[i + 1]); ++k) {
-        const int j = adj_cell[k];
-        const double w = std::abs(upper[static_cast<std::size_t>(adj_face[k])]);
-        if (agg[static_cast<std::size_t>(j)] < 0 && w > free_w) {
-          free_w = w;
-          free_best = j;
-        }
-        if (w > any_w) {
-          any_w = w;
-          any_best = j;
-        }
-      }
-      if (free_best >= 0 && free_w >= kStrongCoupling * any_w) {
-        agg[i] = agg[static_cast<std::size_t>(free_best)] = count++;
-      } else if (free_best >= 0) {
-        agg[i] = count++;  // only weakly coupled to what is free: a pair would coarsen badly
-      } else if (any_best >= 0) {
-        agg[i] = agg[static_cast<std::size_t>(any_best)];
-      } else {
-        agg[i] = count++;  // an isolated cell
-      }
-    }
-    return count;
-  }
-
-  // The coarse level's faces (one per pair of adjacent aggregates) and this level's map to them.
-  Level coarsen(int coarse_cells) {
-    Level c;
-    c.n = coarse_cells;
-    coarse_face.assign(lo.size(), -1);
-    std::unordered_map<std::uint64_t, int> index;
-    index.reserve(lo.size());
-    for (std::size_t f = 0; f < lo.size(); ++f) {
-      int a = agg[static_cast<std::size_t>(lo[f])], z = agg[static_cast<std::size_t>(hi[f])];
-      if (a == z) continue;
-      if (a > z) std::swap(a, z);
-      const auto key = (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(z);
-      const auto [it, added] = index.try_emplace(key, static_cast<int>(c.lo.size()));
-      if (added) {
-        c.lo.push_back(a);
-        c.hi.push_back(z);
-      }
-      coarse_face[f] = it->second;
-    }
-    c.build_adjacency();
-    return c;
-  }
-
-  // Follows this level's maps with those of `mid` (to the level below it): two pairings in a row
-  // make aggregates of about four cells.
-  void compose(const Level& mid) {
-    for (int& a : agg) a = mid.agg[static_cast<std::size_t>(a)];
-    for (int& f : coarse_face) f = f < 0 ? -1 : mid.coarse_face[static_cast<std::size_t>(f)];
-  }
-
-  // Galerkin coarse coefficients P^T A P for piecewise-constant P.
-  void restrict_matrix(Level& c) const {
-    c.diag.assign(static_cast<std::size_t>(c.n), 0.0);
-    c.upper.assign(c.lo.size(), 0.0);
-    for (std::size_t i = 0; i < static_cast<std::size_t>(n); ++i) {
-      c.diag[static_cast<std::size_t>(agg[i])] += diag[i];
-    }
-    for (std::size_t f = 0; f < lo.size(); ++f) {
-      if (coarse_face[f] < 0) {
-        c.diag[static_cast<std::size_t>(agg[static_cast<std::size_t>(lo[f])])] += 2 * upper[f];
-      } else {
-        c.upper[static_cast<std::size_t>(coarse_face[f])] += upper[f];
-      }
-    }
   }
 };
 }  // namespace
@@ -192,171 +158,202 @@ struct Level {
 struct AmgPcg::Hierarchy {
   std::vector<Level> levels;
   Eigen::LLT<Eigen::MatrixXd> coarsest;
+  Eigen::MatrixXd coarsest_dense;
+  Eigen::VectorXd coarsest_x;
+  std::vector<double> r, z, p, q;  // flexible CG on the finest level
 
-  // The rows of every level and the coarsest factor, after new coefficients.
+  explicit Hierarchy(const BlockCsr& A) {
+    levels.reserve(kMaxLevels);  // no reallocation: the levels' matrix pointers stay valid
+    levels.emplace_back();
+    levels[0].A = &A;
+    while (levels.back().A->rows() > kCoarsestCells &&
+           static_cast<int>(levels.size()) < kMaxLevels) {
+      Level& fine = levels.back();
+      const BlockCsr& F = *fine.A;
+      std::vector<int> agg_mid, agg_coarse;
+      const int n_mid = pair_rows(F, agg_mid);
+      Restriction mid_map;
+      BlockCsr mid = mid_map.build(F, agg_mid, n_mid);
+      mid_map.restrict_matrix(F, mid);
+      const int nc = pair_rows(mid, agg_coarse);
+      if (nc > kMinReduction * F.rows()) break;
+      for (int& a : agg_mid) a = agg_coarse[static_cast<std::size_t>(a)];
+      BlockCsr coarse = fine.to_coarse.build(F, std::move(agg_mid), nc);
+      levels.emplace_back();
+      levels.back().own = std::move(coarse);
+      levels.back().A = &levels.back().own;
+    }
+    for (Level& L : levels) L.allocate(L.A->rows());
+    const auto n = static_cast<std::size_t>(A.rows());
+    for (auto* v : {&r, &z, &p, &q}) v->assign(n, 0.0);
+  }
+
+  // New coefficients of the finest matrix: every coarse level's and the coarsest factor.
   void load_coefficients() {
-    for (Level& L : levels) L.load_rows();
-    factorise_coarsest();
-  }
-
-  void factorise_coarsest() {
-    const Level& L = levels.back();
-    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(L.n, L.n);
-    for (int i = 0; i < L.n; ++i) A(i, i) = L.diag[static_cast<std::size_t>(i)];
-    for (std::size_t f = 0; f < L.lo.size(); ++f) {
-      A(L.lo[f], L.hi[f]) += L.upper[f];
-      A(L.hi[f], L.lo[f]) += L.upper[f];
+    for (std::size_t l = 0; l + 1 < levels.size(); ++l)
+      levels[l].to_coarse.restrict_matrix(*levels[l].A, levels[l + 1].own);
+    const BlockCsr& C = *levels.back().A;
+    coarsest_dense.setZero(C.rows(), C.rows());
+    for (int i = 0; i < C.rows(); ++i) {
+      coarsest_dense(i, i) = C.diag[static_cast<std::size_t>(i)];
+      for (int k = C.row_begin(i); k < C.row_end(i); ++k)
+        coarsest_dense(i, C.column(k)) = C.value[static_cast<std::size_t>(k)];
     }
-    coarsest.compute(A);
-    if (coarsest.info() != Eigen::Success) {
+    coarsest.compute(coarsest_dense);
+    if (coarsest.info() != Eigen::Success)
       throw std::runtime_error("AMG: the coarsest matrix is not positive definite");
-    }
+    coarsest_x.resize(C.rows());
   }
 
-  // Solves approximately levels[l].A x = levels[l].b, from x = 0: Gauss-Seidel, the coarse
-  // correction (exact on the coarsest level, a K-cycle elsewhere), Gauss-Seidel backwards.
-  void cycle(std::size_t l) {
+  // Approximately solves levels[l].A x = b, from x = 0 (step 3 of the header).
+  void cycle(std::size_t l, std::span<const double> b, std::span<double> x) {
     Level& L = levels[l];
+    const BlockCsr& A = *L.A;
     if (l + 1 == levels.size()) {
-      Eigen::Map<const Eigen::VectorXd> b(L.b.data(), L.n);
-      Eigen::Map<Eigen::VectorXd>(L.x.data(), L.n) = coarsest.solve(b);
+      coarsest_x = coarsest.solve(Eigen::Map<const Eigen::VectorXd>(b.data(), A.rows()));
+      std::copy(coarsest_x.data(), coarsest_x.data() + A.rows(), x.begin());
       return;
     }
     Level& C = levels[l + 1];
-    std::fill(L.x.begin(), L.x.end(), 0.0);
-    L.sweep_forward();
-    L.multiply(L.x, L.r);
-    for (std::size_t i = 0; i < L.r.size(); ++i) L.r[i] = L.b[i] - L.r[i];
-    std::fill(C.b.begin(), C.b.end(), 0.0);
-    for (std::size_t i = 0; i < L.r.size(); ++i) C.b[static_cast<std::size_t>(L.agg[i])] += L.r[i];
+    const Restriction& R = L.to_coarse;
+    parallel_for(
+        A.rows(), [&](int i) { x[static_cast<std::size_t>(i)] = 0; }, kVectorGrain);
+    A.sweep(b, x, false, true, L.scratch);
+    parallel_for(
+        C.A->rows(),
+        [&](int I) {  // restricted residual
+          const auto Is = static_cast<std::size_t>(I);
+          double s = 0;
+          for (int m = R.member_start[Is]; m < R.member_start[Is + 1]; ++m) {
+            const int i = R.member[static_cast<std::size_t>(m)];
+            const auto is = static_cast<std::size_t>(i);
+            s += b[is] - A.diag[is] * x[is] - A.off_diagonal(i, x);
+          }
+          C.b[Is] = s;
+        },
+        kRowGrain);
     if (l + 2 == levels.size()) {
-      cycle(l + 1);
+      cycle(l + 1, C.b, C.x);
     } else {
       kcycle(l + 1);
     }
-    for (std::size_t i = 0; i < L.x.size(); ++i) L.x[i] += C.x[static_cast<std::size_t>(L.agg[i])];
-    L.sweep_backward();
+    parallel_for(
+        A.rows(),
+        [&](int i) {
+          const auto is = static_cast<std::size_t>(i);
+          x[is] += C.x[static_cast<std::size_t>(R.agg[is])];
+        },
+        kVectorGrain);
+    A.sweep(b, x, true, false, L.scratch);
   }
 
-  // Two flexible-CG steps on level l preconditioned by cycle(l), the second only when the first
-  // left more than a quarter of the residual (Notay and Vassilevski's K-cycle). It minimises the
-  // error in the energy norm over the two directions, which makes a cycle of unsmoothed
-  // aggregation about as good as a two-grid method at any depth.
+  // Two flexible-CG steps on level l (its b to its x) preconditioned by cycle(l), the second
+  // only when the first left more than a quarter of the residual (Notay and Vassilevski's
+  // K-cycle). It minimises the error in the energy norm over the two directions, which makes a
+  // cycle of unsmoothed aggregation about as good as a two-grid method at any depth.
   void kcycle(std::size_t l) {
     Level& L = levels[l];
-    L.r0 = L.b;
-    cycle(l);
-    L.c1 = L.x;
-    L.multiply(L.c1, L.v1);
-    const double rho1 = dot(L.c1, L.v1), alpha1 = dot(L.c1, L.r0);
-    if (!(rho1 > 0)) return;  // keep the plain cycle
-    const double r0_norm = std::sqrt(dot(L.r0, L.r0));
-    for (std::size_t i = 0; i < L.b.size(); ++i) L.b[i] = L.r0[i] - alpha1 / rho1 * L.v1[i];
-    if (std::sqrt(dot(L.b, L.b)) <= kKcycleTolerance * r0_norm) {
-      for (std::size_t i = 0; i < L.x.size(); ++i) L.x[i] = alpha1 / rho1 * L.c1[i];
+    const BlockCsr& A = *L.A;
+    const int n = A.rows();
+    const auto each = [&](auto&& fn) { parallel_for(n, fn, kVectorGrain); };
+    cycle(l, L.b, L.c1);
+    const double rho1 = A.multiply_dot(L.c1, L.v1);
+    const auto [alpha1, b_squared] = dot2(L.b, L.c1, L.b);
+    if (!(rho1 > 0)) {  // keep the plain cycle
+      L.x = L.c1;
       return;
     }
-    cycle(l);  // c2 = L.x, from the new residual in L.b
-    L.multiply(L.x, L.v2);
-    const double gamma = dot(L.x, L.v1), beta = dot(L.x, L.v2), alpha2 = dot(L.x, L.b);
+    const double a = alpha1 / rho1;
+    const double r1_squared =  // r1: the residual after the first step
+        parallel_sum<1>(
+            n,
+            [&](int lo, int hi, std::array<double, 1>& s) {
+              for (int i = lo; i < hi; ++i) {
+                const auto is = static_cast<std::size_t>(i);
+                L.r1[is] = L.b[is] - a * L.v1[is];
+                s[0] += L.r1[is] * L.r1[is];
+              }
+            },
+            kVectorGrain)[0];
+    if (std::sqrt(r1_squared) <= kKcycleTolerance * std::sqrt(b_squared)) {
+      each(
+          [&](int i) { L.x[static_cast<std::size_t>(i)] = a * L.c1[static_cast<std::size_t>(i)]; });
+      return;
+    }
+    cycle(l, L.r1, L.x);  // c2 = L.x
+    const double beta = A.multiply_dot(L.x, L.v2);
+    const auto [gamma, alpha2] = dot2(L.x, L.v1, L.r1);
     const double rho2 = beta - gamma * gamma / rho1;
     if (!(rho2 > 0)) {
-      for (std::size_t i = 0; i < L.x.size(); ++i) L.x[i] = alpha1 / rho1 * L.c1[i];
+      each(
+          [&](int i) { L.x[static_cast<std::size_t>(i)] = a * L.c1[static_cast<std::size_t>(i)]; });
       return;
     }
-    const double a1 = alpha1 / rho1 - gamma * alpha2 / (rho1 * rho2), a2 = alpha2 / rho2;
-    for (std::size_t i = 0; i < L.x.size(); ++i) L.x[i] = a1 * L.c1[i] + a2 * L.x[i];
+    const double a1 = a - gamma * alpha2 / (rho1 * rho2), a2 = alpha2 / rho2;
+    each([&](int i) {
+      const auto is = static_cast<std::size_t>(i);
+      L.x[is] = a1 * L.c1[is] + a2 * L.x[is];
+    });
   }
 };
 
-AmgPcg::AmgPcg(const Mesh& mesh) : mesh_(mesh) {}
+AmgPcg::AmgPcg() = default;
 AmgPcg::~AmgPcg() = default;
 
 int AmgPcg::levels() const {
   return h_ ? static_cast<int>(h_->levels.size()) : 0;
 }
 int AmgPcg::cells(int level) const {
-  return h_->levels.at(static_cast<std::size_t>(level)).n;
+  return h_->levels.at(static_cast<std::size_t>(level)).A->rows();
 }
 
-namespace {
-void load_finest(Level& L, const Mesh& mesh, const Matrix& A) {
-  if (L.lo.empty() && mesh.internal_faces() > 0) {
-    L.n = mesh.cells();
-    for (int f = 0; f < mesh.internal_faces(); ++f) {
-      L.lo.push_back(mesh.owner(f));
-      L.hi.push_back(mesh.neighbour(f));
-    }
-    L.build_adjacency();
-  }
-  L.diag = A.diag;
-  L.upper = A.upper;
-}
-}  // namespace
-
-int AmgPcg::solve(const Matrix& A, std::span<double> x, double tolerance, int max_iterations) {
+SolveStats AmgPcg::solve(const BlockCsr& A, bool changed, std::span<const double> b,
+                         std::span<double> x, double tolerance, int max_iterations) {
   if (!h_) {  // aggregates from the first matrix, kept for the grid's lifetime
-    h_ = std::make_unique<Hierarchy>();
-    h_->levels.emplace_back();
-    load_finest(h_->levels[0], mesh_, A);
-    while (h_->levels.back().n > kCoarsestCells &&
-           static_cast<int>(h_->levels.size()) < kMaxLevels) {
-      Level& fine = h_->levels.back();
-      const int n_mid = fine.pair_cells();
-      Level mid = fine.coarsen(n_mid);
-      fine.restrict_matrix(mid);
-      const int nc = mid.pair_cells();
-      if (nc > kMinReduction * fine.n) break;
-      Level coarse = mid.coarsen(nc);
-      mid.restrict_matrix(coarse);
-      fine.compose(mid);
-      h_->levels.push_back(std::move(coarse));
-    }
-    h_->levels.back().agg.clear();
-    h_->load_coefficients();
-  } else if (A.diag != h_->levels[0].diag || A.upper != h_->levels[0].upper) {
-    // New coefficients (not for the later correctors of an outer iteration, which share the
-    // matrix: their setup would give the same bits).
-    load_finest(h_->levels[0], mesh_, A);
-    for (std::size_t l = 0; l + 1 < h_->levels.size(); ++l) {
-      h_->levels[l].restrict_matrix(h_->levels[l + 1]);
-    }
-    h_->load_coefficients();
+    h_ = std::make_unique<Hierarchy>(A);
+    changed = true;
   }
+  if (&A != h_->levels[0].A) throw std::logic_error("AmgPcg: solve with another matrix");
+  if (changed) h_->load_coefficients();
 
-  // Flexible conjugate gradients: z = M r with M the (nonlinear) K-cycle.
-  Level& F = h_->levels[0];
-  const auto n = static_cast<std::size_t>(F.n);
-  std::vector<double> r(n), r_old(n), z(n), p(n), q(n);
-  F.multiply(x, q);
-  for (std::size_t i = 0; i < n; ++i) r[i] = A.source[i] - q[i];
-  const double bnorm = std::max(std::sqrt(dot(A.source, A.source)), 1e-300);
-  double rnorm = std::sqrt(dot(r, r));
-  if (rnorm <= tolerance * bnorm) return 0;
-  const auto precondition = [&] {
-    F.b = r;
-    h_->cycle(0);
-    z = F.x;
-  };
-  precondition();
-  p = z;
-  double rz = dot(r, z);
+  auto& H = *h_;
+  const int n = A.rows();
+  const auto res = A.residual(b, x, H.r);
+  SolveStats stats;
+  const double norm = res.normalisation + 1e-300;
+  stats.initial_residual = stats.final_residual = res.l1 / norm;
+  const double bnorm = std::max(std::sqrt(res.b_squared), 1e-300);
+  double rnorm = std::sqrt(res.l2_squared);
+  if (rnorm <= tolerance * bnorm) return stats;
+  H.cycle(0, H.r, H.z);
+  parallel_for(n,
+               [&](int i) { H.p[static_cast<std::size_t>(i)] = H.z[static_cast<std::size_t>(i)]; });
+  double rz = dot(H.r, H.z);
   for (int it = 1; it <= max_iterations; ++it) {
-    F.multiply(p, q);
-    const double alpha = rz / dot(p, q);
-    r_old = r;
-    for (std::size_t i = 0; i < n; ++i) {
-      x[i] += alpha * p[i];
-      r[i] -= alpha * q[i];
-    }
-    rnorm = std::sqrt(dot(r, r));
-    if (rnorm <= tolerance * bnorm) return it;
-    precondition();
-    double z_dr = 0;
-    for (std::size_t i = 0; i < n; ++i) z_dr += z[i] * (r[i] - r_old[i]);
-    const double beta = z_dr / rz;
-    rz = dot(r, z);
-    for (std::size_t i = 0; i < n; ++i) p[i] = z[i] + beta * p[i];
+    const double alpha = rz / A.multiply_dot(H.p, H.q);
+    const auto [r_squared, r_l1] =
+        parallel_sum<2>(n, [&](int lo, int hi, std::array<double, 2>& s) {
+          for (int i = lo; i < hi; ++i) {
+            const auto is = static_cast<std::size_t>(i);
+            x[is] += alpha * H.p[is];
+            H.r[is] -= alpha * H.q[is];
+            s[0] += H.r[is] * H.r[is];
+            s[1] += std::abs(H.r[is]);
+          }
+        });
+    rnorm = std::sqrt(r_squared);
+    stats.iterations = it;
+    stats.final_residual = r_l1 / norm;
+    if (rnorm <= tolerance * bnorm) return stats;
+    if (!std::isfinite(rnorm)) break;
+    H.cycle(0, H.r, H.z);
+    const auto [rz_new, zq] = dot2(H.z, H.r, H.q);
+    const double beta = -alpha * zq / rz;  // z . (r_new - r_old) / rz_old
+    rz = rz_new;
+    parallel_for(n, [&](int i) {
+      const auto is = static_cast<std::size_t>(i);
+      H.p[is] = H.z[is] + beta * H.p[is];
+    });
   }
   throw std::runtime_error("AMG-CG did not converge in " + std::to_string(max_iterations) +
                            " iterations: relative residual " + std::to_string(rnorm / bnorm));

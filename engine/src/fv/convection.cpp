@@ -9,6 +9,7 @@
 
 #include "auvloop/engine/fv/operators.hpp"
 #include "parallel.hpp"
+#include "scratch.hpp"
 
 namespace auvloop::engine::fv {
 
@@ -25,24 +26,28 @@ double van_leer(double phiC, double phiD, const Eigen::Vector3d& gradC, const Ei
 }
 
 // The range of phi over each cell and its face neighbours (boundary values included).
-std::vector<std::pair<double, double>> neighbourhood_range(const Mesh& mesh,
-                                                           const ScalarField& phi) {
-  std::vector<std::pair<double, double>> r(phi.cells.size());
-  for (std::size_t c = 0; c < r.size(); ++c) r[c] = {phi.cells[c], phi.cells[c]};
+void neighbourhood_range(const Mesh& mesh, const ScalarField& phi,
+                         std::span<std::pair<double, double>> r) {
   auto widen = [&](std::size_t c, double v) {
     r[c] = {std::min(r[c].first, v), std::max(r[c].second, v)};
   };
-  for (int f = 0; f < mesh.faces(); ++f) {
-    const auto P = static_cast<std::size_t>(mesh.owner(f));
-    if (f < mesh.internal_faces()) {
-      const auto N = static_cast<std::size_t>(mesh.neighbour(f));
-      widen(P, phi.cells[N]);
-      widen(N, phi.cells[P]);
-    } else if (!phi.is_empty(mesh, f - mesh.internal_faces())) {
-      widen(P, phi.boundary[static_cast<std::size_t>(f - mesh.internal_faces())]);
-    }
-  }
-  return r;
+  const int internal = mesh.internal_faces();
+  scatter_faces(
+      mesh,
+      [&](int b, int e) {
+        for (auto c = static_cast<std::size_t>(b); c < static_cast<std::size_t>(e); ++c)
+          r[c] = {phi.cells[c], phi.cells[c]};
+      },
+      [&](int f, bool own, bool nei) {
+        const auto P = static_cast<std::size_t>(mesh.owner(f));
+        if (f < internal) {
+          const auto N = static_cast<std::size_t>(mesh.neighbour(f));
+          if (own) widen(P, phi.cells[N]);
+          if (nei) widen(N, phi.cells[P]);
+        } else if (!phi.is_empty(mesh, f - internal)) {
+          widen(P, phi.boundary[static_cast<std::size_t>(f - internal)]);
+        }
+      });
 }
 
 // Face value of phi on the face between upwind cell C and downwind cell D; rangeC is the range
@@ -70,56 +75,60 @@ double high_order(const Mesh& mesh, Convection scheme, int f, double phiC, doubl
 }
 }  // namespace
 
-// Two passes as in laplacian(): per face in parallel, then accumulate_faces, so the sums are
-// those of a serial face loop whatever the number of threads.
-Matrix div(const Mesh& mesh, std::span<const double> flux, const ScalarField& phi,
-           Convection scheme) {
-  Matrix m(mesh);
-  std::vector<Eigen::Vector3d> g;
-  if (scheme != Convection::upwind) g = grad(mesh, phi);
-  const auto& v = phi.cells;
-  std::vector<std::pair<double, double>> range;
-  if (scheme == Convection::van_leer_skew) range = neighbourhood_range(mesh, phi);
+// One parallel face scatter (scatter_faces), as in laplacian(): each cell's sums in ascending
+// face order, whatever the number of threads.
+void ConvectionTerm::add_to(Matrix& eq, double sign) const {
+  const Mesh& mesh = *m;
+  const ScalarField& field = *phi;
+  const auto n = static_cast<std::size_t>(mesh.cells());
+  Scratch<Eigen::Vector3d> g(scheme != Convection::upwind ? n : 0);
+  if (scheme != Convection::upwind) mesh.gradient(field.cells, field.boundary, *g);
+  const auto& v = field.cells;
+  const bool ranged = scheme == Convection::van_leer_skew;
+  Scratch<std::pair<double, double>> range(ranged ? n : 0);
+  if (ranged) neighbourhood_range(mesh, field, *range);
   const int internal = mesh.internal_faces();
-  // Internal faces: the deferred correction; boundary faces: F phi_b = F (a phi_P + value).
-  std::vector<double> correction(static_cast<std::size_t>(mesh.faces()), 0.0);
-  std::vector<double> boundary_diag(static_cast<std::size_t>(mesh.boundary_faces()), 0.0);
-  parallel_for(mesh.faces(), [&](int f) {
-    const auto fs = static_cast<std::size_t>(f);
-    const double F = flux[fs];
-    if (f >= internal) {
-      const int b = f - internal;
-      if (phi.is_empty(mesh, b)) return;
-      const auto [a, value] = phi.value_coeffs(mesh, b);
-      boundary_diag[static_cast<std::size_t>(b)] = F * a;
-      correction[fs] = F * value;
-      return;
-    }
-    m.upper[fs] = std::min(F, 0.0);
-    m.lower[fs] = -std::max(F, 0.0);
-    if (scheme == Convection::upwind) return;
-    const auto P = static_cast<std::size_t>(mesh.owner(f));
-    const auto N = static_cast<std::size_t>(mesh.neighbour(f));
-    const bool fromP = F >= 0;
-    const auto C = fromP ? P : N, D = fromP ? N : P;
-    // Centres in the owner's frame (a periodic neighbour is seen at its image).
-    const Eigen::Vector3d& xP = mesh.centre(static_cast<int>(P));
-    const Eigen::Vector3d xN = mesh.neighbour_centre(f);
-    correction[fs] =
-        F * (high_order(mesh, scheme, f, v[C], v[D], g[C], fromP ? xP : xN, fromP ? xN : xP,
-                        range.empty() ? std::pair<double, double>{} : range[C]) -
-             v[C]);
-  });
-  accumulate_faces(mesh, m.diag, m.source, [&](int f, bool owner_side) {
-    const auto fs = static_cast<std::size_t>(f);
-    const double F = flux[fs];
-    if (f >= internal)
-      return std::array<double, 2>{boundary_diag[static_cast<std::size_t>(f - internal)],
-                                   -correction[fs]};
-    return owner_side ? std::array<double, 2>{std::max(F, 0.0), -correction[fs]}
-                      : std::array<double, 2>{std::max(-F, 0.0), correction[fs]};
-  });
-  return m;
+  scatter_faces(
+      mesh, [](int, int) {},
+      [&](int f, bool own, bool nei) {
+        const auto fs = static_cast<std::size_t>(f);
+        const double F = sign * flux[fs];
+        const auto P = static_cast<std::size_t>(mesh.owner(f));
+        if (f >= internal) {  // F phi_b = F (a phi_P + value)
+          const int b = f - internal;
+          if (field.is_empty(mesh, b)) return;
+          const auto [a, value] = field.value_coeffs(mesh, b);
+          eq.diag[P] += F * a;
+          eq.source[P] -= F * value;
+          return;
+        }
+        // Upwind in the matrix, the scheme's difference to upwind as a deferred correction.
+        double correction = 0;
+        const auto N = static_cast<std::size_t>(mesh.neighbour(f));
+        if (scheme != Convection::upwind) {
+          const bool fromP = F * sign >= 0;  // upwind by the flux, whatever the term's sign
+          const auto C = fromP ? P : N, D = fromP ? N : P;
+          // Centres in the owner's frame (a periodic neighbour is seen at its image).
+          const Eigen::Vector3d& xP = mesh.centre(static_cast<int>(P));
+          const Eigen::Vector3d xN = mesh.neighbour_centre(f);
+          correction =
+              F * (high_order(mesh, scheme, f, v[C], v[D], g[C], fromP ? xP : xN, fromP ? xN : xP,
+                              ranged ? range[C] : std::pair<double, double>{}) -
+                   v[C]);
+        }
+        // With the term's sign in F: sign * (upwind coefficients of the flux).
+        const double out = sign * std::max(sign * F, 0.0), in = sign * std::min(sign * F, 0.0);
+        if (own) {
+          eq.upper[fs] += in;
+          eq.lower[fs] -= out;
+          eq.diag[P] += out;
+          eq.source[P] -= correction;
+        }
+        if (nei) {
+          eq.diag[N] -= in;
+          eq.source[N] += correction;
+        }
+      });
 }
 
 }  // namespace auvloop::engine::fv

@@ -1,20 +1,19 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// fvm::ddt: backward differences on a fixed time step (BDF2, or Euler to start).
+// fvm::ddt: backward differences (BDF2, or Euler to start; variable-step coefficients in
+// operators.hpp): diag += c0 V / dt, source -= V / dt (c1 phi_old + c2 phi_oldold), per cell.
 #include "auvloop/engine/fv/operators.hpp"
+#include "parallel.hpp"
 
 namespace auvloop::engine::fv {
 
-Matrix ddt(const Mesh& mesh, const TimeScheme& ts, std::span<const double> old,
-           std::span<const double> oldold) {
-  Matrix m(mesh);
+void DdtTerm::add_to(Matrix& eq, double sign) const {
   const auto c = ts.coeffs();
-  for (int i = 0; i < mesh.cells(); ++i) {
+  parallel_for(m->cells(), [&](int i) {
     const auto s = static_cast<std::size_t>(i);
-    const double vdt = mesh.volume(i) / ts.dt;
-    m.diag[s] = c[0] * vdt;
-    m.source[s] = -vdt * (c[1] * old[s] + (c[2] != 0.0 ? c[2] * oldold[s] : 0.0));
-  }
-  return m;
+    const double vdt = sign * m->volume(i) / ts.dt;
+    eq.diag[s] += c[0] * vdt;
+    eq.source[s] -= vdt * (c[1] * old[s] + (c[2] != 0.0 ? c[2] * oldold[s] : 0.0));
+  });
 }
 
 }  // namespace auvloop::engine::fv

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Explicit operators (fvc): cell gradient, face interpolation, divergence of a face flux.
 #include "auvloop/engine/fv/operators.hpp"
+#include "parallel.hpp"
 
 namespace auvloop::engine::fv {
 
@@ -26,14 +27,24 @@ double interpolate(const Mesh& mesh, std::span<const double> cells,
 }
 
 std::vector<double> div(const Mesh& mesh, std::span<const double> face_flux) {
-  std::vector<double> d(static_cast<std::size_t>(mesh.cells()), 0.0);
-  for (int f = 0; f < mesh.faces(); ++f) {
-    const double F = face_flux[static_cast<std::size_t>(f)];
-    d[static_cast<std::size_t>(mesh.owner(f))] += F;
-    if (f < mesh.internal_faces()) d[static_cast<std::size_t>(mesh.neighbour(f))] -= F;
-  }
-  for (int c = 0; c < mesh.cells(); ++c) d[static_cast<std::size_t>(c)] /= mesh.volume(c);
+  std::vector<double> d(static_cast<std::size_t>(mesh.cells()));
+  div(mesh, face_flux, d);
   return d;
+}
+
+void div(const Mesh& mesh, std::span<const double> face_flux, std::span<double> out) {
+  const int internal = mesh.internal_faces();
+  scatter_faces(
+      mesh,
+      [&](int b, int e) {
+        for (auto c = static_cast<std::size_t>(b); c < static_cast<std::size_t>(e); ++c) out[c] = 0;
+      },
+      [&](int f, bool own, bool nei) {
+        const double F = face_flux[static_cast<std::size_t>(f)];
+        if (own) out[static_cast<std::size_t>(mesh.owner(f))] += F;
+        if (nei && f < internal) out[static_cast<std::size_t>(mesh.neighbour(f))] -= F;
+      });
+  parallel_for(mesh.cells(), [&](int c) { out[static_cast<std::size_t>(c)] /= mesh.volume(c); });
 }
 
 }  // namespace auvloop::engine::fv

@@ -1,52 +1,57 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// fvm::laplacian with over-relaxed deferred non-orthogonal correction (Jasak 1996, section 3.3.1).
+// fvm::laplacian with over-relaxed deferred non-orthogonal correction (Jasak 1996, section 3.3.1):
+//   1. on a non-orthogonal grid, grad(phi) from the current phi (for the correction only);
+//   2. per face, with c = gamma_f alpha_f:
+//        internal: upper = lower = c, diag_P -= c, diag_N -= c, and the explicit flux
+//                  gamma_f k_f . grad(phi)_f to the sources (out of P, into N);
+//        boundary: phi_b = a phi_P + v, flux c (phi_b - phi_P) + gamma_f k_f . grad(phi)_P:
+//                  diag_P += c (a - 1), source_P -= c v + gamma_f k_f . grad(phi)_P;
+//      in one parallel face scatter (scatter_faces): each cell's sums in ascending face order, so
+//      the result does not depend on the number of threads.
 #include "auvloop/engine/fv/operators.hpp"
 #include "parallel.hpp"
+#include "scratch.hpp"
 
 namespace auvloop::engine::fv {
 
-// Two passes: per face in parallel (coefficients and the explicit corrections), then the
-// diagonal and source summed per cell in ascending face order (accumulate_faces: a parallel
-// gather, or the face scatter on one thread), so the result does not depend on the thread count.
-Matrix laplacian(const Mesh& mesh, std::span<const double> gamma, const ScalarField& phi) {
-  Matrix m(mesh);
-  const auto g = grad(mesh, phi);  // for the explicit correction only
+void LaplacianTerm::add_to(Matrix& eq, double sign) const {
+  const Mesh& mesh = *m;
+  const bool corrected = !mesh.orthogonal();
+  Scratch<Eigen::Vector3d> g(corrected ? static_cast<std::size_t>(mesh.cells()) : 0);
+  if (corrected) mesh.gradient(phi->cells, phi->boundary, *g);
   const int internal = mesh.internal_faces();
-  std::vector<double> correction(static_cast<std::size_t>(mesh.faces()), 0.0);
-  std::vector<double> boundary_diag(static_cast<std::size_t>(mesh.boundary_faces()), 0.0);
-  parallel_for(mesh.faces(), [&](int f) {
-    const auto fs = static_cast<std::size_t>(f);
-    const double c = gamma[fs] * mesh.alpha(f);
-    if (f < internal) {
-      m.upper[fs] = c;
-      m.lower[fs] = c;
-      correction[fs] = gamma[fs] * mesh.k(f).dot(interpolate(mesh, g, f));
-      return;
-    }
-    const int b = f - internal;
-    if (phi.is_empty(mesh, b)) return;
-    const auto [a, v] = phi.value_coeffs(mesh, b);
-    if (a == 1.0 && v == 0.0) return;  // zero gradient: no diffusive flux
-    // Flux gamma alpha (phi_b - phi_P) + gamma k . grad(phi)_P with phi_b = a phi_P + v.
-    const auto P = static_cast<std::size_t>(mesh.owner(f));
-    boundary_diag[static_cast<std::size_t>(b)] = c * (a - 1);
-    correction[fs] = c * v + gamma[fs] * mesh.k(f).dot(g[P]);
-  });
-  accumulate_faces(mesh, m.diag, m.source, [&](int f, bool owner_side) {
-    const auto fs = static_cast<std::size_t>(f);
-    if (f >= internal)
-      return std::array<double, 2>{boundary_diag[static_cast<std::size_t>(f - internal)],
-                                   -correction[fs]};
-    // The flux leaves the owner and enters the neighbour.
-    return std::array<double, 2>{-gamma[fs] * mesh.alpha(f),
-                                 owner_side ? -correction[fs] : correction[fs]};
-  });
-  return m;
-}
-
-Matrix laplacian(const Mesh& mesh, double gamma, const ScalarField& phi) {
-  const std::vector<double> g(static_cast<std::size_t>(mesh.faces()), gamma);
-  return laplacian(mesh, g, phi);
+  const auto gamma = [&](std::size_t f) {
+    return gamma_faces.empty() ? gamma_uniform : gamma_faces[f];
+  };
+  scatter_faces(
+      mesh, [](int, int) {},
+      [&](int f, bool own, bool nei) {
+        const auto fs = static_cast<std::size_t>(f);
+        const double gf = sign * gamma(fs);
+        const double c = gf * mesh.alpha(f);
+        const auto P = static_cast<std::size_t>(mesh.owner(f));
+        if (f < internal) {
+          const double correction = corrected ? gf * mesh.k(f).dot(interpolate(mesh, *g, f)) : 0.0;
+          if (own) {
+            eq.upper[fs] += c;
+            eq.lower[fs] += c;
+            eq.diag[P] -= c;
+            eq.source[P] -= correction;
+          }
+          if (nei) {
+            const auto N = static_cast<std::size_t>(mesh.neighbour(f));
+            eq.diag[N] -= c;
+            eq.source[N] += correction;
+          }
+          return;
+        }
+        const int b = f - internal;
+        if (phi->is_empty(mesh, b)) return;
+        const auto [a, v] = phi->value_coeffs(mesh, b);
+        if (a == 1.0 && v == 0.0) return;  // zero gradient: no diffusive flux
+        eq.diag[P] += c * (a - 1);
+        eq.source[P] -= c * v + (corrected ? gf * mesh.k(f).dot(g[P]) : 0.0);
+      });
 }
 
 }  // namespace auvloop::engine::fv

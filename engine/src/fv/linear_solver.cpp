@@ -12,7 +12,8 @@
 
 #include "amg_pcg.hpp"
 #include "dic_pcg.hpp"
-#include "parallel_cg.hpp"
+#include "krylov.hpp"
+#include "parallel.hpp"
 
 namespace auvloop::engine::fv {
 
@@ -39,6 +40,28 @@ const char* to_string(SymmetricMethod m) {
   return "?";
 }
 
+const char* to_string(AsymmetricMethod m) {
+  switch (m) {
+    case AsymmetricMethod::gauss_seidel:
+      return "gauss-seidel";
+    case AsymmetricMethod::bicgstab_jacobi:
+      return "bicgstab";
+    case AsymmetricMethod::bicgstab_gs:
+      return "bicgstab-gs";
+    case AsymmetricMethod::bicgstab_ilut:
+      return "bicgstab-ilut";
+  }
+  return "?";
+}
+
+AsymmetricMethod asymmetric_method_from_string(const std::string& s) {
+  for (auto m : {AsymmetricMethod::gauss_seidel, AsymmetricMethod::bicgstab_jacobi,
+                 AsymmetricMethod::bicgstab_gs, AsymmetricMethod::bicgstab_ilut})
+    if (s == to_string(m)) return m;
+  throw std::invalid_argument("unknown momentum solver '" + s +
+                              "' (gauss-seidel, bicgstab, bicgstab-gs, bicgstab-ilut)");
+}
+
 SymmetricMethod symmetric_method_from_string(const std::string& s) {
   for (auto m : {SymmetricMethod::cholmod, SymmetricMethod::cholmod_pcg,
                  SymmetricMethod::cg_incomplete_cholesky, SymmetricMethod::cg_dic,
@@ -48,18 +71,18 @@ SymmetricMethod symmetric_method_from_string(const std::string& s) {
                               "' (cholmod, cholmod-pcg, cg-ic, cg-dic, cg-jacobi, cg-amg)");
 }
 
-struct LinearSolver::Impl {
-  const Mesh& mesh;
-  double tolerance;
+// The matrix in the form of Eigen and CHOLMOD (compressed columns, both triangles) with the map
+// from the LDU coefficients: the direct and Eigen-based methods only.
+struct EigenCopy {
   Sparse A;
   std::vector<int> diag_pos, upper_pos, lower_pos;  // positions in A.valuePtr()
   Eigen::CholmodSupernodalLLT<Sparse, Eigen::Lower> cholmod;
   bool analysed = false;
   std::vector<double> factorised_values;  // the coefficients of the current factorisation
   int last_pcg_iterations = 0;
-  std::unique_ptr<AmgPcg> amg;  // built on the first cg-amg solve
+  double tolerance;
 
-  Impl(const Mesh& m, double tol) : mesh(m), tolerance(tol) {
+  EigenCopy(const Mesh& mesh, double tol) : tolerance(tol) {
     std::vector<Eigen::Triplet<double, int>> t;
     for (int c = 0; c < mesh.cells(); ++c) t.emplace_back(c, c, 1.0);
     for (int f = 0; f < mesh.internal_faces(); ++f) {
@@ -119,13 +142,82 @@ struct LinearSolver::Impl {
     return -1;
   }
 
-  void load(const Matrix& m) {
+  void load(const Matrix& m, double sign) {
     double* v = A.valuePtr();
-    for (std::size_t c = 0; c < diag_pos.size(); ++c) v[diag_pos[c]] = m.diag[c];
+    for (std::size_t c = 0; c < diag_pos.size(); ++c) v[diag_pos[c]] = sign * m.diag[c];
     for (std::size_t f = 0; f < upper_pos.size(); ++f) {
-      v[upper_pos[f]] = m.upper[f];
-      v[lower_pos[f]] = m.lower[f];
+      v[upper_pos[f]] = sign * m.upper[f];
+      v[lower_pos[f]] = sign * m.lower[f];
     }
+  }
+};
+
+struct LinearSolver::Impl {
+  const Mesh& mesh;
+  double tolerance;
+  BlockCsr csr;                 // the iterative methods' copy of the matrix
+  std::vector<int> entry_face;  // per csr entry: f where the row owns face f (upper), else ~f
+  std::vector<double> b;        // the right-hand side as loaded
+  bool loaded = false;
+  KrylovWork work;
+  std::unique_ptr<AmgPcg> amg;       // built on the first cg-amg solve
+  std::unique_ptr<EigenCopy> eigen;  // built on the first solve that needs it
+
+  Impl(const Mesh& m, double tol)
+      : mesh(m), tolerance(tol), b(static_cast<std::size_t>(m.cells())) {
+    std::vector<int> row_start(static_cast<std::size_t>(mesh.cells()) + 1, 0), columns, tags;
+    for (int c = 0; c < mesh.cells(); ++c) {
+      for (int f : mesh.cell_faces(c)) {
+        if (f >= mesh.internal_faces()) break;  // boundary faces come last
+        const bool owner = mesh.owner(f) == c;
+        columns.push_back(owner ? mesh.neighbour(f) : mesh.owner(f));
+        tags.push_back(owner ? f : ~f);
+      }
+      row_start[static_cast<std::size_t>(c) + 1] = static_cast<int>(columns.size());
+    }
+    csr = BlockCsr(mesh.cells(), row_start, columns);
+    entry_face.resize(tags.size());
+    for (std::size_t k = 0; k < tags.size(); ++k)
+      entry_face[k] = tags[static_cast<std::size_t>(csr.permutation()[k])];
+  }
+
+  // sign * m into csr and b, in parallel; whether any coefficient differs from the last load.
+  bool load(const Matrix& m, double sign) {
+    const double changes =
+        parallel_sum<1>(csr.rows(), [&](int lo, int hi, std::array<double, 1>& s) {
+          for (int i = lo; i < hi; ++i) {
+            const auto is = static_cast<std::size_t>(i);
+            bool differs = csr.diag[is] != sign * m.diag[is];
+            csr.diag[is] = sign * m.diag[is];
+            b[is] = sign * m.source[is];
+            for (int k = csr.row_begin(i); k < csr.row_end(i); ++k) {
+              const int t = entry_face[static_cast<std::size_t>(k)];
+              const double a = sign * (t >= 0 ? m.upper[static_cast<std::size_t>(t)]
+                                              : m.lower[static_cast<std::size_t>(~t)]);
+              differs = differs || csr.value[static_cast<std::size_t>(k)] != a;
+              csr.value[static_cast<std::size_t>(k)] = a;
+            }
+            s[0] += differs ? 1.0 : 0.0;
+          }
+        })[0];
+    const bool changed = changes > 0 || !loaded;
+    loaded = true;
+    if (changed) csr.coefficients_changed();
+    return changed;
+  }
+
+  EigenCopy& eigen_copy(const Matrix& m, double sign) {
+    if (!eigen) eigen = std::make_unique<EigenCopy>(mesh, tolerance);
+    eigen->load(m, sign);
+    return *eigen;
+  }
+
+  // The normalised residuals of x for methods that do not report them.
+  void residuals(std::span<const double> x, SolveStats& stats, bool initial) {
+    work.resize(csr.rows());
+    const auto res = csr.residual(b, x, work.r);
+    const double value = res.l1 / (res.normalisation + 1e-300);
+    (initial ? stats.initial_residual : stats.final_residual) = value;
   }
 };
 
@@ -135,8 +227,8 @@ LinearSolver::~LinearSolver() = default;
 
 namespace {
 template <class Solver>
-SolveStats iterate(Solver& solver, const Sparse& A, const std::vector<double>& source,
-                   std::span<double> x, double tolerance) {
+int iterate(Solver& solver, const Sparse& A, std::span<const double> source, std::span<double> x,
+            double tolerance) {
   solver.setTolerance(tolerance);
   solver.setMaxIterations(5000);
   solver.compute(A);
@@ -144,102 +236,118 @@ SolveStats iterate(Solver& solver, const Sparse& A, const std::vector<double>& s
   Eigen::Map<Vec> xv(x.data(), static_cast<Eigen::Index>(x.size()));
   Vec guess = xv;
   xv = solver.solveWithGuess(b, guess);
-  SolveStats s;
-  s.iterations = static_cast<int>(solver.iterations());
-  s.final_residual = solver.error();
   if (solver.info() != Eigen::Success && !(solver.error() < 1e3 * tolerance))
     throw std::runtime_error(
         fmt::format("Eigen Krylov solver did not converge in {} iterations: relative residual "
                     "{:.3g} (tolerance {:.3g})",
                     solver.iterations(), solver.error(), tolerance));
-  return s;
+  return static_cast<int>(solver.iterations());
 }
 }  // namespace
 
 SolveStats LinearSolver::solve_symmetric(const Matrix& m, std::span<double> x,
                                          SymmetricMethod method) {
   auto& I = *impl_;
+  // CG and CHOLMOD want a positive definite matrix: the Laplacian is negative definite, so solve
+  // (-A) x = -b.
+  const bool changed = I.load(m, -1.0);
+  if (method == SymmetricMethod::cg_amg) {
+    if (!I.amg) I.amg = std::make_unique<AmgPcg>();
+    return I.amg->solve(I.csr, changed, I.b, x, I.tolerance, 2000);
+  }
+  if (method == SymmetricMethod::cg_jacobi) {
+    return jacobi_cg(I.csr, I.b, x, I.tolerance, 20000, I.work);
+  }
   SolveStats stats;
-  stats.initial_residual = normalised_residual(I.mesh, m, x);
-  // Eigen's CG and CHOLMOD want a positive definite matrix: the Laplacian is negative definite,
-  // so solve (-A) x = -b.
-  Matrix neg = -m;
-  I.load(neg);
+  I.residuals(x, stats, true);
+  Eigen::Map<const Vec> b(I.b.data(), static_cast<Eigen::Index>(I.b.size()));
+  Eigen::Map<Vec> xv(x.data(), static_cast<Eigen::Index>(x.size()));
   if (method == SymmetricMethod::cholmod) {
-    if (!std::equal(I.factorised_values.begin(), I.factorised_values.end(), I.A.valuePtr()) ||
-        I.factorised_values.empty())
-      I.factorise(stats);
-    Eigen::Map<const Vec> b(neg.source.data(), static_cast<Eigen::Index>(neg.source.size()));
-    Eigen::Map<Vec>(x.data(), static_cast<Eigen::Index>(x.size())) = I.cholmod.solve(b);
+    auto& E = I.eigen_copy(m, -1.0);
+    if (!std::equal(E.factorised_values.begin(), E.factorised_values.end(), E.A.valuePtr()) ||
+        E.factorised_values.empty())
+      E.factorise(stats);
+    xv = E.cholmod.solve(b);
   } else if (method == SymmetricMethod::cholmod_pcg) {
     // Refactorise when the old factor has become a poor preconditioner (more than 10
     // iterations last time, or no convergence in 30); with a fresh factor the solve is direct.
-    Eigen::Map<const Vec> b(neg.source.data(), static_cast<Eigen::Index>(neg.source.size()));
-    Eigen::Map<Vec> xv(x.data(), static_cast<Eigen::Index>(x.size()));
+    auto& E = I.eigen_copy(m, -1.0);
     int iterations = -1;
-    if (!I.factorised_values.empty() && I.last_pcg_iterations <= 10) {
+    if (!E.factorised_values.empty() && E.last_pcg_iterations <= 10) {
       const Vec x0 = xv;
-      iterations = I.pcg(b, xv, 30);
+      iterations = E.pcg(b, xv, 30);
       if (iterations < 0) xv = x0;
     }
     if (iterations < 0) {
-      I.factorise(stats);
-      xv = I.cholmod.solve(b);
+      E.factorise(stats);
+      xv = E.cholmod.solve(b);
       iterations = 0;
     }
-    stats.iterations = I.last_pcg_iterations = iterations;
+    stats.iterations = E.last_pcg_iterations = iterations;
   } else if (method == SymmetricMethod::cg_incomplete_cholesky) {
+    auto& E = I.eigen_copy(m, -1.0);
     Eigen::ConjugateGradient<Sparse, Eigen::Lower | Eigen::Upper,
                              Eigen::IncompleteCholesky<double, Eigen::Lower>>
         cg;
-    const auto s = iterate(cg, I.A, neg.source, x, I.tolerance);
-    stats.iterations = s.iterations;
-  } else if (method == SymmetricMethod::cg_dic) {
-    stats.iterations = dic_pcg(I.mesh, neg, x, I.tolerance, 20000);
-  } else if (method == SymmetricMethod::cg_amg) {
-    if (!I.amg) I.amg = std::make_unique<AmgPcg>(I.mesh);
-    stats.iterations = I.amg->solve(neg, x, I.tolerance, 2000);
-  } else {
-    const Vec b = Eigen::Map<const Vec>(neg.source.data(), static_cast<Eigen::Index>(x.size()));
-    Eigen::Map<Vec> xv(x.data(), static_cast<Eigen::Index>(x.size()));
-    stats.iterations = parallel_jacobi_cg(I.A, b, xv, I.tolerance, 20000);
+    stats.iterations = iterate(cg, E.A, I.b, x, I.tolerance);
+  } else {  // cg_dic
+    stats.iterations = dic_pcg(I.mesh, -m, x, I.tolerance, 20000);
   }
-  stats.final_residual = normalised_residual(I.mesh, m, x);
+  I.residuals(x, stats, false);
   return stats;
 }
 
 SolveStats LinearSolver::solve_asymmetric(const Matrix& m, std::span<double> x,
-                                          AsymmetricMethod method) {
+                                          AsymmetricMethod method, double tolerance) {
   auto& I = *impl_;
-  SolveStats stats;
-  stats.initial_residual = normalised_residual(I.mesh, m, x);
-  I.load(m);
-  if (method == AsymmetricMethod::bicgstab_ilut) {
-    Eigen::BiCGSTAB<Sparse, Eigen::IncompleteLUT<double>> s;
-    stats.iterations = iterate(s, I.A, m.source, x, I.tolerance).iterations;
-  } else {
-    Eigen::BiCGSTAB<Sparse> s;
-    stats.iterations = iterate(s, I.A, m.source, x, I.tolerance).iterations;
+  const double tol = tolerance > 0 ? tolerance : I.tolerance;
+  I.load(m, 1.0);
+  if (method == AsymmetricMethod::gauss_seidel) {
+    constexpr int kSweepPairs = 20;
+    auto gs = gauss_seidel_solve(I.csr, I.b, x, tol, kSweepPairs, I.work);
+    if (gs.converged) return gs.stats;
+    const SolveStats more = bicgstab(I.csr, I.b, x, tol, 5000, I.work, Preconditioner::jacobi);
+    gs.stats.iterations += more.iterations;
+    gs.stats.final_residual = more.final_residual;
+    return gs.stats;
   }
-  stats.final_residual = normalised_residual(I.mesh, m, x);
+  if (method == AsymmetricMethod::bicgstab_jacobi || method == AsymmetricMethod::bicgstab_gs) {
+    return bicgstab(I.csr, I.b, x, tol, 5000, I.work,
+                    method == AsymmetricMethod::bicgstab_gs ? Preconditioner::gauss_seidel
+                                                            : Preconditioner::jacobi);
+  }
+  SolveStats stats;
+  I.residuals(x, stats, true);
+  auto& E = I.eigen_copy(m, 1.0);
+  Eigen::BiCGSTAB<Sparse, Eigen::IncompleteLUT<double>> s;
+  stats.iterations = iterate(s, E.A, I.b, x, tol);
+  I.residuals(x, stats, false);
   return stats;
 }
 
 double normalised_residual(const Mesh& mesh, const Matrix& m, std::span<const double> x) {
-  const auto n = static_cast<std::size_t>(mesh.cells());
-  double mean = 0;
-  for (std::size_t i = 0; i < n; ++i) mean += x[i];
-  mean /= static_cast<double>(n);
-  std::vector<double> Ax(n), Axbar(n);
-  const std::vector<double> xbar(n, mean);
+  const int n = mesh.cells();
+  const double mean = parallel_sum<1>(n,
+                                      [&](int lo, int hi, std::array<double, 1>& s) {
+                                        for (int i = lo; i < hi; ++i)
+                                          s[0] += x[static_cast<std::size_t>(i)];
+                                      })[0] /
+                      std::max(n, 1);
+  std::vector<double> Ax(static_cast<std::size_t>(n));
   m.multiply(mesh, x, Ax);
-  m.multiply(mesh, xbar, Axbar);
-  double r = 0, norm = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    r += std::abs(m.source[i] - Ax[i]);
-    norm += std::abs(Ax[i] - Axbar[i]) + std::abs(m.source[i] - Axbar[i]);
-  }
-  return r / (norm + 1e-300);
+  // A xbar = xbar (row sums of A); the row sums by the matrix product of a vector of ones.
+  std::vector<double> row_sum(static_cast<std::size_t>(n));
+  const std::vector<double> ones(static_cast<std::size_t>(n), 1.0);
+  m.multiply(mesh, ones, row_sum);
+  const auto s = parallel_sum<2>(n, [&](int lo, int hi, std::array<double, 2>& acc) {
+    for (int i = lo; i < hi; ++i) {
+      const auto c = static_cast<std::size_t>(i);
+      const double axbar = row_sum[c] * mean;
+      acc[0] += std::abs(m.source[c] - Ax[c]);
+      acc[1] += std::abs(Ax[c] - axbar) + std::abs(m.source[c] - axbar);
+    }
+  });
+  return s[0] / (s[1] + 1e-300);
 }
 
 }  // namespace auvloop::engine::fv

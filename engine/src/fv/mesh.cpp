@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "auvloop/engine/fv/mesh.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -48,6 +49,7 @@ Mesh::Mesh(const mesher::Grid& source)
     }
     alpha_[fs] = S.squaredNorm() / Sd;
     k_[fs] = S - alpha_[fs] * d_[fs];
+    orthogonal_ = orthogonal_ && k_[fs].norm() <= 1e-12 * S.norm();
   }
   for (std::size_t p = 0; p < grid.patches.size(); ++p) {
     const auto& patch = grid.patches[p];
@@ -70,6 +72,41 @@ Mesh::Mesh(const mesher::Grid& source)
       cell_face_list_[static_cast<std::size_t>(fill[static_cast<std::size_t>(neighbour(f))]++)] = f;
   }
   gradient_ = std::make_unique<LeastSquaresGradient>(grid, geo_, d_);
+  face_blocks_ = FaceBlocks(grid);
+}
+
+// A power of two of blocks (two threads share them evenly; three within a block), at most 16 and
+// of at least 1024 cells each: few enough that the faces shared by two blocks (listed twice) stay
+// a small share.
+FaceBlocks::FaceBlocks(const mesher::Grid& grid) {
+  const int n = grid.cells;
+  int blocks = 1;
+  while (2 * blocks <= std::min(16, n / 1024)) blocks *= 2;
+  cell_start_.resize(static_cast<std::size_t>(blocks) + 1);
+  for (int k = 0; k <= blocks; ++k)
+    cell_start_[static_cast<std::size_t>(k)] =
+        static_cast<int>(static_cast<long long>(n) * k / blocks);
+  std::vector<int> block_of(static_cast<std::size_t>(n));
+  for (int k = 0; k < blocks; ++k)
+    for (int c = cell_begin(k); c < cell_end(k); ++c) block_of[static_cast<std::size_t>(c)] = k;
+  std::vector<std::vector<int>> lists(static_cast<std::size_t>(blocks));
+  for (int f = 0; f < grid.faces(); ++f) {
+    const auto fs = static_cast<std::size_t>(f);
+    const int bo = block_of[static_cast<std::size_t>(grid.owner[fs])];
+    const int bn =
+        f < grid.internal_faces() ? block_of[static_cast<std::size_t>(grid.neighbour[fs])] : -1;
+    if (bo == bn) {
+      lists[static_cast<std::size_t>(bo)].push_back(f << 2 | kOwner | kNeighbour);
+      continue;
+    }
+    lists[static_cast<std::size_t>(bo)].push_back(f << 2 | kOwner);
+    if (bn >= 0) lists[static_cast<std::size_t>(bn)].push_back(f << 2 | kNeighbour);
+  }
+  face_start_.assign(1, 0);
+  for (const auto& l : lists) {
+    tagged_.insert(tagged_.end(), l.begin(), l.end());
+    face_start_.push_back(static_cast<int>(tagged_.size()));
+  }
 }
 
 void Mesh::gradient(std::span<const double> cells, std::span<const double> boundary,

@@ -1,72 +1,136 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Parallel loops of the finite-volume engine (oneTBB), private to engine/src.
 //
-// Determinism: every parallel loop writes only to the entries of its own index range, and any
-// sum over faces is gathered per cell in the fixed order of Mesh::cell_faces, never accumulated
-// across threads; so results are bitwise identical whatever the number of threads (test
-// FvThreads.BitwiseIdenticalForOneAndTwoThreads).
+// Determinism (results bitwise identical for any number of threads; test FvThreads):
+//   1. a loop writes only to the entries of its own index range;
+//   2. a sum over the faces of a cell is taken in ascending face order, by the thread that owns
+//      the cell (scatter_faces), never accumulated across threads;
+//   3. a reduction (parallel_sum) adds partial sums over fixed blocks of indices, whose size
+//      depends on the length only, in block order;
+//   4. an algorithm whose result depends on a partition (the hybrid Gauss-Seidel smoother,
+//      sparse.hpp) takes a partition that depends on the matrix only.
+// Loops use TBB's static partitioner: each thread takes the same contiguous share of a range in
+// every loop, so the data a thread touched in one loop is in its cache for the next.
 #pragma once
 
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <array>
-#include <vector>
+#include <cstddef>
+
+#include "auvloop/engine/fv/mesh.hpp"
 
 namespace auvloop::engine::fv {
 
-// True when only one thread may run: loops whose parallel form costs more work (per-cell gathers
-// instead of a face scatter) then take their serial form, which adds the same terms in the same
-// order, so the results stay bitwise equal.
-inline bool single_thread() {
-  return tbb::this_task_arena::max_concurrency() == 1 ||
-         tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism) == 1;
+// Below this many indices a loop runs on the calling thread (a fork-join costs a microsecond or
+// two): vector operations; loops over matrix rows (several entries each) split from kRowGrain.
+inline constexpr int kSerialBelow = 4096;
+inline constexpr int kRowGrain = 512;
+// Vector operations of the solvers (a few flops per entry, in loops that follow one another).
+inline constexpr int kVectorGrain = 2048;
+
+// The number of threads the engine's loops may use now.
+inline int threads() {
+  const auto limit =
+      tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
+  return std::max(1, std::min(tbb::this_task_arena::max_concurrency(), static_cast<int>(limit)));
 }
 
-// fn(i) for i in [0, n), in blocks of at least `grain` indices.
+// fn(begin, end) over contiguous sub-ranges of [0, n) of at least `grain` indices.
 template <class F>
-void parallel_for(int n, F&& fn, int grain = 2048) {
-  tbb::parallel_for(tbb::blocked_range<int>(0, n, static_cast<std::size_t>(grain)),
-                    [&](const tbb::blocked_range<int>& r) {
-                      for (int i = r.begin(); i != r.end(); ++i) fn(i);
-                    });
-}
-
-// Sums per-face contributions into two per-cell arrays a and b (the diagonal and source of an
-// assembly): term(f, owner_side) returns {da, db} for the owner (owner_side true) or the
-// neighbour of face f. In parallel a per-cell gather over Mesh::cell_faces; on one thread the
-// face scatter, which is cheaper (each face visited once) and adds the same terms in the same
-// order per cell (ascending face index), so the results are bitwise equal.
-template <class Mesh, class Term>
-void accumulate_faces(const Mesh& mesh, std::vector<double>& a, std::vector<double>& b,
-                      Term&& term) {
-  const int internal = mesh.internal_faces();
-  if (single_thread()) {
-    for (int f = 0; f < mesh.faces(); ++f) {
-      const auto P = static_cast<std::size_t>(mesh.owner(f));
-      const auto [da, db] = term(f, true);
-      a[P] += da;
-      b[P] += db;
-      if (f >= internal) continue;
-      const auto N = static_cast<std::size_t>(mesh.neighbour(f));
-      const auto [na, nb] = term(f, false);
-      a[N] += na;
-      b[N] += nb;
-    }
+void parallel_ranges(int n, F&& fn, int grain = kSerialBelow) {
+  if (n <= grain || threads() == 1) {
+    if (n > 0) fn(0, n);
     return;
   }
-  parallel_for(mesh.cells(), [&](int cell) {
-    const auto c = static_cast<std::size_t>(cell);
-    double sa = a[c], sb = b[c];
-    for (int f : mesh.cell_faces(cell)) {
-      const auto [da, db] = term(f, mesh.owner(f) == cell);
-      sa += da;
-      sb += db;
-    }
-    a[c] = sa;
-    b[c] = sb;
+  tbb::parallel_for(
+      tbb::blocked_range<int>(0, n, static_cast<std::size_t>(grain)),
+      [&](const tbb::blocked_range<int>& r) { fn(r.begin(), r.end()); }, tbb::static_partitioner());
+}
+
+// fn(i) for i in [0, n).
+template <class F>
+void parallel_for(int n, F&& fn, int grain = kSerialBelow) {
+  parallel_ranges(
+      n,
+      [&](int b, int e) {
+        for (int i = b; i < e; ++i) fn(i);
+      },
+      grain);
+}
+
+// fn(k) for every block k in [0, blocks) (one task per block; blocks are few and large); on the
+// calling thread alone when `serial`.
+template <class F>
+void parallel_blocks(int blocks, F&& fn, bool serial = false) {
+  if (serial || blocks == 1 || threads() == 1) {
+    for (int k = 0; k < blocks; ++k) fn(k);
+    return;
+  }
+  tbb::parallel_for(
+      tbb::blocked_range<int>(0, blocks, 1),
+      [&](const tbb::blocked_range<int>& r) {
+        for (int k = r.begin(); k != r.end(); ++k) fn(k);
+      },
+      tbb::static_partitioner());
+}
+
+// The fixed blocks of a reduction over n indices: at least 1024 indices each and at most 256
+// blocks; depends on n only.
+struct ReductionBlocks {
+  static constexpr int kMaxBlocks = 256;
+  explicit ReductionBlocks(int length)
+      : n(length),
+        size(std::max(1024, (length + kMaxBlocks - 1) / kMaxBlocks)),
+        count((length + size - 1) / size) {}
+  int n, size, count;
+  [[nodiscard]] int begin(int k) const { return k * size; }
+  [[nodiscard]] int end(int k) const { return std::min(n, (k + 1) * size); }
+};
+
+// K sums over i in [0, n): fn(begin, end, sums) adds the terms of [begin, end) to `sums` (which
+// it receives zeroed) in ascending order; the partial sums of the fixed blocks are then added in
+// block order. Bitwise the same for any number of threads (and for any `grain`, below which the
+// blocks are summed on the calling thread).
+template <std::size_t K, class F>
+std::array<double, K> parallel_sum(int n, F&& fn, int grain = kSerialBelow) {
+  const ReductionBlocks blocks(n);
+  std::array<std::array<double, K>, ReductionBlocks::kMaxBlocks> partial;
+  parallel_blocks(
+      blocks.count,
+      [&](int k) {
+        auto& s = partial[static_cast<std::size_t>(k)];
+        s.fill(0.0);
+        fn(blocks.begin(k), blocks.end(k), s);
+      },
+      n < grain);
+  std::array<double, K> total{};
+  for (int k = 0; k < blocks.count; ++k)
+    for (std::size_t j = 0; j < K; ++j) total[j] += partial[static_cast<std::size_t>(k)][j];
+  return total;
+}
+
+// Face contributions summed into cells, in parallel over the blocks of Mesh::face_blocks: in each
+// block, cells(begin, end) for its cells first, then face(f, owner, neighbour) for every face of
+// the block's list in ascending order, `owner` / `neighbour` telling which of the face's cells lie
+// in the block (a face between two blocks is visited from both, with one flag each). face() adds
+// the face's terms to the flagged cells only, and may write per-face values of f when `owner` is
+// set (once per face). Each cell's terms arrive in ascending face order, owner side before
+// neighbour side, exactly as in the serial loop
+//     cells(0, n); for f: add to owner(f); if internal: add to neighbour(f)
+// so the sums are bitwise those of that loop whatever the number of threads.
+template <class Cells, class Face>
+void scatter_faces(const Mesh& mesh, Cells&& cells, Face&& face) {
+  const auto& fb = mesh.face_blocks();
+  parallel_blocks(fb.blocks(), [&](int k) {
+    cells(fb.cell_begin(k), fb.cell_end(k));
+    for (int t : fb.faces(k))
+      face(t >> 2, (t & FaceBlocks::kOwner) != 0, (t & FaceBlocks::kNeighbour) != 0);
   });
 }
 

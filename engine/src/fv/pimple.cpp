@@ -19,6 +19,8 @@
 
 #include "auvloop/engine/fv/output.hpp"
 #include "diagnosis.hpp"
+#include "parallel.hpp"
+#include "scratch.hpp"
 
 namespace auvloop::engine::fv {
 
@@ -29,12 +31,18 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 }  // namespace
 
 std::pair<double, int> courant(const Mesh& mesh, std::span<const double> phi, double dt) {
-  std::vector<double> sum(static_cast<std::size_t>(mesh.cells()), 0.0);
-  for (int f = 0; f < mesh.faces(); ++f) {
-    const double a = std::abs(phi[static_cast<std::size_t>(f)]);
-    sum[static_cast<std::size_t>(mesh.owner(f))] += a;
-    if (f < mesh.internal_faces()) sum[static_cast<std::size_t>(mesh.neighbour(f))] += a;
-  }
+  Scratch<double> sum(static_cast<std::size_t>(mesh.cells()));
+  const int internal = mesh.internal_faces();
+  scatter_faces(
+      mesh,
+      [&](int b, int e) {
+        for (auto c = static_cast<std::size_t>(b); c < static_cast<std::size_t>(e); ++c) sum[c] = 0;
+      },
+      [&](int f, bool own, bool nei) {
+        const double a = std::abs(phi[static_cast<std::size_t>(f)]);
+        if (own) sum[static_cast<std::size_t>(mesh.owner(f))] += a;
+        if (nei && f < internal) sum[static_cast<std::size_t>(mesh.neighbour(f))] += a;
+      });
   std::pair<double, int> worst{0.0, 0};
   for (int c = 0; c < mesh.cells(); ++c) {
     const double co = 0.5 * dt * sum[static_cast<std::size_t>(c)] / mesh.volume(c);
@@ -98,7 +106,7 @@ void Pimple::initialise() {
   apply_slip();
   p.update_boundary(mesh_);
   std::array<std::vector<double>, 3> u{U.c[0].cells, U.c[1].cells, U.c[2].cells};
-  phi = face_flux(u);
+  face_flux(u, phi);
   for (int b = 0; b < mesh_.boundary_faces(); ++b) {
     const int f = b + mesh_.internal_faces();
     phi[static_cast<std::size_t>(f)] =
@@ -132,19 +140,20 @@ StepReport Pimple::step() {
   if (!body_force.empty() && body_force.size() != static_cast<std::size_t>(mesh_.cells()))
     throw std::invalid_argument(fmt::format("Pimple: body_force has {} entries for {} cells",
                                             body_force.size(), mesh_.cells()));
-  const VectorField U_good = U;
-  const ScalarField p_good = p;
-  const auto phi_good = phi;
-  const auto old_good = U_old_;
-  const auto phi_old_good = phi_old_;
-  const auto force_good = predictor_force_;
-  U_old_[1] = U_old_[0];
+  // Copy assignments into kept storage: no allocation after the first step.
+  good_.U = U;
+  good_.p = p;
+  good_.phi = phi;
+  good_.U_old = U_old_;
+  good_.phi_old = phi_old_;
+  good_.predictor_force = predictor_force_;
+  U_old_[1].swap(U_old_[0]);
   for (std::size_t i = 0; i < 3; ++i) U_old_[0][i] = U.c[i].cells;
-  phi_old_[1] = phi_old_[0];
+  phi_old_[1].swap(phi_old_[0]);
   phi_old_[0] = phi;
   const auto coeffs = TimeScheme{settings_.dt, settings_.bdf2 && steps_ > 0}.coeffs();
   for (std::size_t k = 0; k < 2; ++k)
-    U_old_flux_[k] = coeffs[k + 1] == 0.0 ? std::vector<double>{} : face_flux(U_old_[k]);
+    if (coeffs[k + 1] != 0.0) face_flux(U_old_[k], U_old_flux_[k]);
   StepReport r;
   const double gradient_seconds = mesh_.gradient_seconds();
   r.step = steps_ + 1;
@@ -155,14 +164,14 @@ StepReport Pimple::step() {
       const bool final = outer == settings_.outer_iterations;
       auto t0 = std::chrono::steady_clock::now();
       apply_slip();
-      Momentum m = assemble_momentum(final);
+      assemble_momentum(final);
       r.seconds_assembly += seconds_since(t0);
-      solve_momentum(m, r, outer == 1);
+      solve_momentum(r, outer == 1);
       r.seconds_momentum += seconds_since(t0);
       t0 = std::chrono::steady_clock::now();
       for (int corr = 0; corr < settings_.pressure_correctors; ++corr)
-        correct_pressure(m, r, outer == 1 && corr == 0, final);
-      store_predictor_force(m);
+        correct_pressure(r, outer == 1 && corr == 0, final);
+      store_predictor_force();
       r.seconds_pressure += seconds_since(t0);
       r.outer_iterations = outer;
       // Converged outer loop: momentum's initial residual of this iteration is small enough.
@@ -171,20 +180,25 @@ StepReport Pimple::step() {
     const auto t0 = std::chrono::steady_clock::now();
     const auto [co, cell] = courant(mesh_, phi, dt_);
     r.max_courant = co;
-    const auto d = div(mesh_, phi);
-    for (int c = 0; c < mesh_.cells(); ++c)
-      r.continuity_error += std::abs(d[static_cast<std::size_t>(c)]) * mesh_.volume(c);
-    r.continuity_error *= dt_ / mesh_.total_volume();
+    Scratch<double> d(static_cast<std::size_t>(mesh_.cells()));
+    div(mesh_, phi, *d);
+    r.continuity_error =
+        parallel_sum<1>(mesh_.cells(),
+                        [&](int lo, int hi, std::array<double, 1>& s) {
+                          for (int c = lo; c < hi; ++c)
+                            s[0] += std::abs(d[static_cast<std::size_t>(c)]) * mesh_.volume(c);
+                        })[0] *
+        dt_ / mesh_.total_volume();
     r.seconds_other = seconds_since(t0);
     r.seconds_gradient = mesh_.gradient_seconds() - gradient_seconds;
     check(r);
   } catch (const std::exception& e) {
-    U = U_good;
-    p = p_good;
-    phi = phi_good;
-    U_old_ = old_good;
-    phi_old_ = phi_old_good;
-    predictor_force_ = force_good;
+    U = good_.U;
+    p = good_.p;
+    phi = good_.phi;
+    U_old_ = good_.U_old;
+    phi_old_ = good_.phi_old;
+    predictor_force_ = good_.predictor_force;
     throw DivergenceError(
         fmt::format("step {} (t = {:.6g} s) diverged: {}; the fields of t = {:.6g} s are kept{}",
                     r.step, r.time, e.what(), time_, write_last_good()));
@@ -196,7 +210,11 @@ StepReport Pimple::step() {
 }
 
 void Pimple::check(const StepReport& r) const {
-  for (int c = 0; c < mesh_.cells(); ++c) {
+  const double bad = parallel_sum<1>(mesh_.cells(), [&](int lo, int hi, std::array<double, 1>& s) {
+    for (int c = lo; c < hi; ++c)
+      if (!std::isfinite(p.cells[static_cast<std::size_t>(c)]) || !U.cell(c).allFinite()) s[0] += 1;
+  })[0];
+  for (int c = 0; bad > 0 && c < mesh_.cells(); ++c) {  // the first such cell, named
     const auto s = static_cast<std::size_t>(c);
     if (!std::isfinite(p.cells[s]) || !U.cell(c).allFinite())
       throw std::runtime_error("non-finite velocity or pressure in " + cell_at(mesh_, c));

@@ -13,6 +13,8 @@
 #include <Eigen/LU>
 
 #include "diagnosis.hpp"
+#include "parallel.hpp"
+#include "scratch.hpp"
 
 namespace auvloop::engine::fv {
 
@@ -35,11 +37,11 @@ bool free_pressure_face(const Mesh& mesh, const ScalarField& p, int f) {
 }
 
 void extrapolate_zero_gradient(const Mesh& mesh, ScalarField& p) {
-  for (int c = 0; c < mesh.cells(); ++c) {
+  parallel_for(mesh.cells(), [&](int c) {  // each cell writes its own boundary faces only
     const auto cell_faces = mesh.cell_faces(c);
     bool any = false;
     for (int f : cell_faces) any = any || free_pressure_face(mesh, p, f);
-    if (!any) continue;
+    if (!any) return;
     Eigen::Matrix3d M = Eigen::Matrix3d::Zero();
     Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
     const auto P = static_cast<std::size_t>(c);
@@ -59,102 +61,118 @@ void extrapolate_zero_gradient(const Mesh& mesh, ScalarField& p) {
       rhs += d * (other - p.cells[P]) / d.squaredNorm();
     }
     const Eigen::FullPivLU<Eigen::Matrix3d> lu(M);
-    if (!lu.isInvertible()) continue;  // too few other points: keep p_b = p_P
+    if (!lu.isInvertible()) return;  // too few other points: keep p_b = p_P
     const Eigen::Vector3d g = lu.solve(rhs);
     for (int f : cell_faces) {
       if (!free_pressure_face(mesh, p, f)) continue;
       p.boundary[static_cast<std::size_t>(f - mesh.internal_faces())] =
           p.cells[P] + g.dot(mesh.face_centre(f) - mesh.centre(c));
     }
-  }
+  });
 }
 }  // namespace
 
-std::vector<double> Pimple::face_flux(const std::array<std::vector<double>, 3>& u) const {
+void Pimple::face_flux(const std::array<std::vector<double>, 3>& u, std::vector<double>& f) const {
   // Skewness-corrected interpolation (mesh.hpp, "skew") of each active component: with plain
   // w u_P + (1 - w) u_N the flux is first order wherever the skewness does not shrink under
   // refinement (an O-grid's corners), and the converged flow then depends on where they are.
   // The gradients see U's boundary values on fixed-velocity patches, the cell value elsewhere.
-  std::vector<double> f(static_cast<std::size_t>(mesh_.faces()), 0.0);
-  if (!mesh_.skewed()) {
-    for (int j = 0; j < mesh_.internal_faces(); ++j) {
-      const double w = mesh_.weight(j);
-      f[static_cast<std::size_t>(j)] =
-          (w * cell_vector(u, static_cast<std::size_t>(mesh_.owner(j))) +
-           (1 - w) * cell_vector(u, static_cast<std::size_t>(mesh_.neighbour(j))))
-              .dot(mesh_.area(j));
+  f.resize(static_cast<std::size_t>(mesh_.faces()));
+  const int internal = mesh_.internal_faces();
+  parallel_for(mesh_.faces(), [&](int j) {
+    const auto js = static_cast<std::size_t>(j);
+    if (j >= internal || mesh_.skewed()) {
+      f[js] = 0.0;
+      return;
     }
-    return f;
-  }
-  std::vector<double> boundary(static_cast<std::size_t>(mesh_.boundary_faces()));
-  std::vector<Eigen::Vector3d> g(static_cast<std::size_t>(mesh_.cells()));
+    const double w = mesh_.weight(j);
+    f[js] = (w * cell_vector(u, static_cast<std::size_t>(mesh_.owner(j))) +
+             (1 - w) * cell_vector(u, static_cast<std::size_t>(mesh_.neighbour(j))))
+                .dot(mesh_.area(j));
+  });
+  if (!mesh_.skewed()) return;
+  Scratch<double> boundary(static_cast<std::size_t>(mesh_.boundary_faces()));
+  Scratch<Eigen::Vector3d> g(static_cast<std::size_t>(mesh_.cells()));
   for (std::size_t i = 0; i < 3; ++i) {
     if (!active_[i]) continue;
-    for (int b = 0; b < mesh_.boundary_faces(); ++b) {
+    parallel_for(mesh_.boundary_faces(), [&](int b) {
       const bool fixed = U.c[i].value_coeffs(mesh_, b)[0] == 0.0;
       boundary[static_cast<std::size_t>(b)] =
           fixed ? U.c[i].boundary[static_cast<std::size_t>(b)]
-                : u[i][static_cast<std::size_t>(mesh_.owner(b + mesh_.internal_faces()))];
-    }
-    mesh_.gradient(u[i], boundary, g);
+                : u[i][static_cast<std::size_t>(mesh_.owner(b + internal))];
+    });
+    mesh_.gradient(u[i], *boundary, *g);
     const auto e = static_cast<Eigen::Index>(i);
-    for (int j = 0; j < mesh_.internal_faces(); ++j)
-      f[static_cast<std::size_t>(j)] += interpolate(mesh_, u[i], g, j) * mesh_.area(j)[e];
+    parallel_for(internal, [&](int j) {
+      f[static_cast<std::size_t>(j)] += interpolate(mesh_, u[i], *g, j) * mesh_.area(j)[e];
+    });
   }
-  return f;
 }
 
-void Pimple::correct_pressure(const Momentum& m, StepReport& r, bool first, bool final) {
+void Pimple::correct_pressure(StepReport& r, bool first, bool final) {
   const auto n = static_cast<std::size_t>(mesh_.cells());
+  const int internal = mesh_.internal_faces();
   const std::size_t a0 = active_[0] ? 0 : (active_[1] ? 1 : 2);
-  const auto& A = m.eq[a0].diag;
-  std::vector<double> D(n);
-  for (std::size_t c = 0; c < n; ++c) D[c] = mesh_.volume(static_cast<int>(c)) / A[c];
-  std::array<std::vector<double>, 3> HbyA{std::vector<double>(n, 0.0), std::vector<double>(n, 0.0),
-                                          std::vector<double>(n, 0.0)};
+  const auto& eqs = momentum_.eq;
+  const auto& A = eqs[a0].diag;
+  auto& W = work_;
+  auto& D = W.D;
+  auto& HbyA = W.HbyA;
+  D.resize(n);
+  parallel_for(mesh_.cells(), [&](int c) {
+    D[static_cast<std::size_t>(c)] = mesh_.volume(c) / A[static_cast<std::size_t>(c)];
+  });
   for (std::size_t i = 0; i < 3; ++i) {
-    if (!active_[i]) continue;
-    m.eq[i].h_operator(mesh_, U.c[i].cells, HbyA[i]);
-    for (std::size_t c = 0; c < n; ++c) HbyA[i][c] /= A[c];
+    HbyA[i].resize(n);
+    if (!active_[i]) {
+      std::fill(HbyA[i].begin(), HbyA[i].end(), 0.0);
+      continue;
+    }
+    eqs[i].h_operator(mesh_, U.c[i].cells, HbyA[i]);
+    parallel_for(mesh_.cells(), [&](int c) {
+      HbyA[i][static_cast<std::size_t>(c)] /= A[static_cast<std::size_t>(c)];
+    });
   }
-  // b. Rhie-Chow flux with the time-consistent correction.
-  std::vector<double> phiHbyA = face_flux(HbyA);
+  // b. Rhie-Chow flux with the time-consistent correction; the face D.
+  auto& phiHbyA = W.phiHbyA;
+  auto& Df = W.Df;
+  face_flux(HbyA, phiHbyA);
+  Df.resize(static_cast<std::size_t>(mesh_.faces()));
   const auto coeffs = time_scheme().coeffs();
-  for (std::size_t k = 0; k < 2; ++k) {
-    if (coeffs[k + 1] == 0.0) continue;
-    const auto& interpolated = U_old_flux_[k];
-    for (int f = 0; f < mesh_.internal_faces(); ++f) {
-      const auto fs = static_cast<std::size_t>(f);
-      const double w = mesh_.weight(f);
-      const double Df = w * D[static_cast<std::size_t>(mesh_.owner(f))] +
-                        (1 - w) * D[static_cast<std::size_t>(mesh_.neighbour(f))];
-      phiHbyA[fs] += Df / dt_ * -coeffs[k + 1] * (phi_old_[k][fs] - interpolated[fs]);
-    }
-  }
-  std::vector<double> Df(static_cast<std::size_t>(mesh_.faces()));
-  for (int f = 0; f < mesh_.faces(); ++f) {
+  parallel_for(mesh_.faces(), [&](int f) {
+    const auto fs = static_cast<std::size_t>(f);
     const auto P = static_cast<std::size_t>(mesh_.owner(f));
-    if (f < mesh_.internal_faces()) {
+    if (f < internal) {
       const double w = mesh_.weight(f);
-      Df[static_cast<std::size_t>(f)] =
-          w * D[P] + (1 - w) * D[static_cast<std::size_t>(mesh_.neighbour(f))];
-    } else {
-      const int b = f - mesh_.internal_faces();
-      Df[static_cast<std::size_t>(f)] = D[P];
-      const bool fixed_u = U.c[a0].value_coeffs(mesh_, b)[0] == 0.0;
-      phiHbyA[static_cast<std::size_t>(f)] =
-          U.c[a0].is_empty(mesh_, b)
-              ? 0.0
-              : (fixed_u ? U.face(b) : cell_vector(HbyA, P)).dot(mesh_.area(f));
+      Df[fs] = w * D[P] + (1 - w) * D[static_cast<std::size_t>(mesh_.neighbour(f))];
+      for (std::size_t k = 0; k < 2; ++k) {
+        if (coeffs[k + 1] == 0.0) continue;
+        phiHbyA[fs] += Df[fs] / dt_ * -coeffs[k + 1] * (phi_old_[k][fs] - U_old_flux_[k][fs]);
+      }
+      return;
     }
-  }
+    const int b = f - internal;
+    Df[fs] = D[P];
+    const bool fixed_u = U.c[a0].value_coeffs(mesh_, b)[0] == 0.0;
+    phiHbyA[fs] = U.c[a0].is_empty(mesh_, b)
+                      ? 0.0
+                      : (fixed_u ? U.face(b) : cell_vector(HbyA, P)).dot(mesh_.area(f));
+  });
   // c. and d.
-  const std::vector<double> p_prev = p.cells;
-  const auto net = div(mesh_, phiHbyA);
+  W.p_prev = p.cells;
+  auto& net = W.net;
+  net.resize(n);
+  div(mesh_, phiHbyA, net);
+  auto& gp = W.gp;
+  gp.resize(n);
+  const bool corrected = !mesh_.orthogonal();
+  Matrix& eq = W.p_eq;
   for (int corr = 0; corr <= settings_.non_orthogonal_correctors; ++corr) {
-    const auto gp = grad(mesh_, p);
-    Matrix eq = laplacian(mesh_, Df, p);
-    for (std::size_t c = 0; c < n; ++c) eq.source[c] += net[c] * mesh_.volume(static_cast<int>(c));
+    if (corrected) mesh_.gradient(p.cells, p.boundary, gp);
+    eq = laplacian(mesh_, Df, p);
+    parallel_for(mesh_.cells(), [&](int c) {
+      eq.source[static_cast<std::size_t>(c)] += net[static_cast<std::size_t>(c)] * mesh_.volume(c);
+    });
     if (!pressure_fixed_) eq.diag[0] += eq.diag[0];  // reference value p = 0 in cell 0
     const auto s = solve_named(mesh_, eq, p.cells, "pressure equation", [&] {
       return solver_.solve_symmetric(eq, p.cells, *settings_.pressure_solver);
@@ -162,38 +180,43 @@ void Pimple::correct_pressure(const Momentum& m, StepReport& r, bool first, bool
     if (first && corr == 0) r.pressure_residual = s.initial_residual;
     r.pressure_iterations += s.iterations;
     // Face flux of the pressure equation with the same explicit part as its source.
-    for (int f = 0; f < mesh_.faces(); ++f) {
+    parallel_for(mesh_.faces(), [&](int f) {
       const auto fs = static_cast<std::size_t>(f);
       const auto P = static_cast<std::size_t>(mesh_.owner(f));
       double pf;
-      Eigen::Vector3d g;
-      if (f < mesh_.internal_faces()) {
+      double correction = 0;
+      if (f < internal) {
         pf = p.cells[static_cast<std::size_t>(mesh_.neighbour(f))];
-        g = interpolate(mesh_, gp, f);
+        if (corrected) correction = mesh_.k(f).dot(interpolate(mesh_, gp, f));
       } else {
-        const int b = f - mesh_.internal_faces();
+        const int b = f - internal;
         const auto [ca, cb] = p.value_coeffs(mesh_, b);
         if (p.is_empty(mesh_, b) || ca == 1.0) {
           phi[fs] = phiHbyA[fs];
-          continue;
+          return;
         }
         pf = cb;
-        g = gp[P];
+        if (corrected) correction = mesh_.k(f).dot(gp[P]);
       }
-      phi[fs] = phiHbyA[fs] - Df[fs] * (mesh_.alpha(f) * (pf - p.cells[P]) + mesh_.k(f).dot(g));
-    }
+      phi[fs] = phiHbyA[fs] - Df[fs] * (mesh_.alpha(f) * (pf - p.cells[P]) + correction);
+    });
   }
   if (!final && settings_.relax_p < 1) {
-    for (std::size_t c = 0; c < n; ++c)
-      p.cells[c] = p_prev[c] + settings_.relax_p * (p.cells[c] - p_prev[c]);
+    parallel_for(mesh_.cells(), [&](int c) {
+      const auto s = static_cast<std::size_t>(c);
+      p.cells[s] = W.p_prev[s] + settings_.relax_p * (p.cells[s] - W.p_prev[s]);
+    });
   }
   p.update_boundary(mesh_);
   extrapolate_zero_gradient(mesh_, p);
-  const auto gp = grad(mesh_, p);
+  mesh_.gradient(p.cells, p.boundary, gp);
   for (std::size_t i = 0; i < 3; ++i) {
     if (!active_[i]) continue;
-    for (std::size_t c = 0; c < n; ++c)
-      U.c[i].cells[c] = HbyA[i][c] - D[c] * gp[c][static_cast<Eigen::Index>(i)];
+    const auto e = static_cast<Eigen::Index>(i);
+    parallel_for(mesh_.cells(), [&](int c) {
+      const auto s = static_cast<std::size_t>(c);
+      U.c[i].cells[s] = HbyA[i][s] - D[s] * gp[s][e];
+    });
     U.c[i].update_boundary(mesh_);
   }
 }
@@ -201,19 +224,23 @@ void Pimple::correct_pressure(const Momentum& m, StepReport& r, bool first, bool
 // The predictor force (pimple.hpp): (H(U) - A U) / V per active component with the equation of
 // the last corrector. With U_k = HbyA(U_{k-1}) - D grad(p) this is grad(p) + N (U_{k-1} - U_k) / V:
 // the pressure gradient plus the part of H that lagged one corrector behind.
-void Pimple::store_predictor_force(const Momentum& m) {
+void Pimple::store_predictor_force() {
   const auto n = static_cast<std::size_t>(mesh_.cells());
-  std::vector<double> h(n);
+  auto& h = work_.h;
+  h.resize(n);
   for (std::size_t i = 0; i < 3; ++i) {
     auto& force = predictor_force_[i];
     if (!active_[i]) {
       force.clear();
       continue;
     }
-    m.eq[i].h_operator(mesh_, U.c[i].cells, h);
+    const Matrix& eq = momentum_.eq[i];
+    eq.h_operator(mesh_, U.c[i].cells, h);
     force.resize(n);
-    for (std::size_t c = 0; c < n; ++c)
-      force[c] = (h[c] - m.eq[i].diag[c] * U.c[i].cells[c]) / mesh_.volume(static_cast<int>(c));
+    parallel_for(mesh_.cells(), [&](int c) {
+      const auto s = static_cast<std::size_t>(c);
+      force[s] = (h[s] - eq.diag[s] * U.c[i].cells[s]) / mesh_.volume(c);
+    });
   }
 }
 

@@ -1,8 +1,13 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Linear solvers for fv::Matrix equations. The matrix pattern is the grid's face addressing, so
-// the compressed-column copy and its index map are built once per grid; a symbolic Cholesky
-// analysis is done once and only the numeric factorisation is repeated (and skipped when the
-// coefficients have not changed, as for the pressure matrix on a fixed grid and time step).
+// the row-compressed copy the iterative solvers work on (with its fixed partition for the
+// parallel smoother) and its map from faces are built once per grid, and each solve only loads
+// the coefficients; work vectors and multigrid hierarchies are kept between solves. A symbolic
+// Cholesky analysis is done once and only the numeric factorisation is repeated (and skipped when
+// the coefficients have not changed, as for the pressure matrix on a fixed grid and time step).
+// Every iterative method runs in parallel on the engine's thread pool with results that are
+// bitwise the same for any number of threads; CHOLMOD, cholmod-pcg, cg-ic and cg-dic's sweeps are
+// serial.
 #pragma once
 
 #include <memory>
@@ -19,19 +24,26 @@ enum class SymmetricMethod {
                 // only when the iterations exceed a limit
   cg_incomplete_cholesky,  // Eigen CG with its IncompleteCholesky (threshold, with fill)
   cg_dic,     // conjugate gradients, diagonal incomplete Cholesky (OpenFOAM's DIC), serial sweeps
-  cg_jacobi,  // conjugate gradients, diagonal preconditioner, parallel (oneTBB)
-  cg_amg,     // flexible CG, aggregation algebraic multigrid V-cycle (engine/src/fv/amg_pcg.hpp)
+  cg_jacobi,  // conjugate gradients, diagonal preconditioner
+  cg_amg,     // flexible CG, aggregation algebraic multigrid K-cycle (engine/src/fv/amg_pcg.hpp)
 };
 enum class AsymmetricMethod {
-  bicgstab_jacobi,  // Eigen BiCGSTAB with a diagonal preconditioner
-  bicgstab_ilut,    // Eigen BiCGSTAB with incomplete LU (threshold)
+  // Symmetric hybrid Gauss-Seidel sweeps (engine/src/fv/sparse.hpp), as OpenFOAM's smoothSolver:
+  // for diagonally dominant equations (momentum, transport); after 20 sweep pairs without
+  // convergence it goes on with bicgstab_jacobi from where it stands.
+  gauss_seidel,
+  bicgstab_jacobi,  // BiCGSTAB with a diagonal preconditioner
+  bicgstab_gs,      // BiCGSTAB preconditioned by a symmetric hybrid Gauss-Seidel sweep pair
+  bicgstab_ilut,    // Eigen BiCGSTAB with incomplete LU (threshold; serial)
 };
 
 const char* to_string(SymmetricMethod m);
 SymmetricMethod symmetric_method_from_string(const std::string& s);
+const char* to_string(AsymmetricMethod m);
+AsymmetricMethod asymmetric_method_from_string(const std::string& s);
 
 struct SolveStats {
-  int iterations = 0;
+  int iterations = 0;           // Krylov iterations, or Gauss-Seidel sweep pairs
   double initial_residual = 0;  // |b - A x0| / normalisation (OpenFOAM style)
   double final_residual = 0;
   bool factorised = false;  // a numeric factorisation was (re)computed in this call
@@ -46,7 +58,9 @@ class LinearSolver {
 
   // Solves A x = source for a symmetric matrix (upper == lower); x holds the initial guess.
   SolveStats solve_symmetric(const Matrix& m, std::span<double> x, SymmetricMethod method);
-  SolveStats solve_asymmetric(const Matrix& m, std::span<double> x, AsymmetricMethod method);
+  // `tolerance` > 0 replaces the solver's own for this solve.
+  SolveStats solve_asymmetric(const Matrix& m, std::span<double> x, AsymmetricMethod method,
+                              double tolerance = 0);
 
  private:
   struct Impl;

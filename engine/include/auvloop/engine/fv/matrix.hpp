@@ -6,8 +6,13 @@
 // as -source, so that an equation reads like its PDE:
 //     Matrix eq = ddt(...) + div(...) - laplacian(...);  eq == rhs_per_unit_volume;
 // The sparsity pattern is the grid's face addressing, so it never changes for a given grid.
+//
+// The implicit operators (operators.hpp) return terms, not matrices: a term adds its coefficients
+// to a Matrix when it is assigned or added to one, so `eq = ddt(...) + div(...) - laplacian(...)`
+// into a Matrix kept from the last time step allocates nothing (the solver's hot path).
 #pragma once
 
+#include <concepts>
 #include <span>
 #include <vector>
 
@@ -15,11 +20,42 @@
 
 namespace auvloop::engine::fv {
 
+struct Matrix;
+
+// A term of an equation: mesh() and add_to(m, sign), which adds sign times its coefficients.
+template <class T>
+concept Term = requires(const T& t, Matrix& m) {
+  { t.mesh() } -> std::same_as<const Mesh&>;
+  t.add_to(m, 1.0);
+};
+
 struct Matrix {
   std::vector<double> diag, upper, lower, source;
 
   Matrix() = default;
   explicit Matrix(const Mesh& mesh);
+  template <Term T>
+  Matrix(const T& term) : Matrix(term.mesh()) {  // NOLINT: implicit, as an equation reads
+    term.add_to(*this, 1.0);
+  }
+  template <Term T>
+  Matrix& operator=(const T& term) {
+    reset(term.mesh());
+    term.add_to(*this, 1.0);
+    return *this;
+  }
+  template <Term T>
+  Matrix& operator+=(const T& term) {
+    term.add_to(*this, 1.0);
+    return *this;
+  }
+  template <Term T>
+  Matrix& operator-=(const T& term) {
+    term.add_to(*this, -1.0);
+    return *this;
+  }
+  // Sized for the mesh and zero, keeping the storage it has.
+  void reset(const Mesh& mesh);
 
   Matrix& operator+=(const Matrix& o);
   Matrix& operator-=(const Matrix& o);

@@ -36,6 +36,30 @@
 
 namespace auvloop::engine::fv {
 
+// The faces grouped by blocks of consecutive cells, for parallel scatters of face terms into
+// cells (engine/src/fv/parallel.hpp, scatter_faces). Block k holds cells [cell_begin(k),
+// cell_end(k)); its list holds, in ascending face order, every face whose owner or neighbour lies
+// in the block, as (f << 2) | kOwner if the owner does | kNeighbour if the neighbour does. A face
+// between two blocks is in both lists. The blocking does not change any result (each cell's
+// contributions are summed in ascending face order either way); it only spreads the work.
+class FaceBlocks {
+ public:
+  static constexpr int kOwner = 1, kNeighbour = 2;
+  FaceBlocks() = default;
+  explicit FaceBlocks(const mesher::Grid& grid);
+  [[nodiscard]] int blocks() const { return static_cast<int>(cell_start_.size()) - 1; }
+  [[nodiscard]] int cell_begin(int k) const { return cell_start_[static_cast<std::size_t>(k)]; }
+  [[nodiscard]] int cell_end(int k) const { return cell_start_[static_cast<std::size_t>(k) + 1]; }
+  [[nodiscard]] std::span<const int> faces(int k) const {
+    const auto b = static_cast<std::size_t>(face_start_[static_cast<std::size_t>(k)]);
+    const auto e = static_cast<std::size_t>(face_start_[static_cast<std::size_t>(k) + 1]);
+    return std::span<const int>(tagged_).subspan(b, e - b);
+  }
+
+ private:
+  std::vector<int> cell_start_, face_start_, tagged_;
+};
+
 class Mesh {
  public:
   explicit Mesh(const mesher::Grid& grid);
@@ -86,6 +110,10 @@ class Mesh {
     const auto e = static_cast<std::size_t>(cell_face_offsets_[static_cast<std::size_t>(c) + 1]);
     return std::span<const int>(cell_face_list_).subspan(b, e - b);
   }
+  const FaceBlocks& face_blocks() const { return face_blocks_; }
+  // Whether every face is orthogonal (|k| <= 1e-12 |S|): the non-orthogonal corrections, and the
+  // gradients they need, are then skipped.
+  bool orthogonal() const { return orthogonal_; }
   // Least-squares cell gradient of cell values with their boundary-face values.
   void gradient(std::span<const double> cells, std::span<const double> boundary,
                 std::span<Eigen::Vector3d> out) const;
@@ -104,8 +132,9 @@ class Mesh {
   std::vector<Eigen::Vector3d> d_, k_, skew_;
   std::vector<int> patch_of_;
   std::vector<int> cell_face_offsets_, cell_face_list_;
+  FaceBlocks face_blocks_;
   double total_volume_ = 0;
-  bool skewed_ = false;
+  bool skewed_ = false, orthogonal_ = true;
   std::unique_ptr<LeastSquaresGradient> gradient_;
   mutable std::atomic<double> gradient_seconds_{0.0};
 };

@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Implicit finite-volume operators (fvm) and the explicit ones they rely on (fvc). Each returns the
-// volume integral of its term as a Matrix (matrix.hpp); an equation is their sum. Boundary
+// Implicit finite-volume operators (fvm) and the explicit ones they rely on (fvc). Each implicit
+// one returns the volume integral of its term as a term (matrix.hpp) that adds itself to a
+// Matrix; an equation is their sum. Boundary
 // conditions enter through ScalarField::value_coeffs; empty faces carry no flux.
 #pragma once
 
+#include <array>
 #include <span>
 #include <vector>
 
@@ -21,15 +23,31 @@ Eigen::Vector3d interpolate(const Mesh& mesh, std::span<const Eigen::Vector3d> c
 // on any grid, second order where the skewness does not shrink under refinement.
 double interpolate(const Mesh& mesh, std::span<const double> cells,
                    std::span<const Eigen::Vector3d> gradients, int f);
-// Cell divergence of a face flux field: sum of outgoing fluxes / volume.
+// Cell divergence of a face flux field: sum of outgoing fluxes / volume (into `out`, n values).
 std::vector<double> div(const Mesh& mesh, std::span<const double> face_flux);
+void div(const Mesh& mesh, std::span<const double> face_flux, std::span<double> out);
 
 // --- implicit -------------------------------------------------------------------------------
+// Each returns a term (matrix.hpp): evaluated when assigned or added to a Matrix.
+
 // laplacian(gamma, phi) = div(gamma grad phi): per face, gamma_f alpha_f (phi_N - phi_P) implicit
 // and gamma_f k_f . grad(phi)_f explicit (deferred non-orthogonal correction from the current
-// phi; exact on orthogonal faces, k = 0). gamma is given per face.
-Matrix laplacian(const Mesh& mesh, std::span<const double> gamma, const ScalarField& phi);
-Matrix laplacian(const Mesh& mesh, double gamma, const ScalarField& phi);
+// phi; exact on orthogonal faces, k = 0, where it is skipped). gamma per face, or uniform.
+struct LaplacianTerm {
+  const Mesh* m;
+  std::span<const double> gamma_faces;  // empty: gamma_uniform
+  double gamma_uniform;
+  const ScalarField* phi;
+  [[nodiscard]] const Mesh& mesh() const { return *m; }
+  void add_to(Matrix& eq, double sign) const;
+};
+inline LaplacianTerm laplacian(const Mesh& mesh, std::span<const double> gamma,
+                               const ScalarField& phi) {
+  return {&mesh, gamma, 0.0, &phi};
+}
+inline LaplacianTerm laplacian(const Mesh& mesh, double gamma, const ScalarField& phi) {
+  return {&mesh, {}, gamma, &phi};
+}
 
 // div(F, phi) with face volume fluxes F (m^3/s, positive out of the owner): upwind implicit and
 // the scheme's difference to upwind as a deferred (explicit) correction from the current phi.
@@ -44,8 +62,18 @@ enum class Convection {
   // the skewness). The default.
   van_leer_skew,
 };
-Matrix div(const Mesh& mesh, std::span<const double> flux, const ScalarField& phi,
-           Convection scheme);
+struct ConvectionTerm {
+  const Mesh* m;
+  std::span<const double> flux;
+  const ScalarField* phi;
+  Convection scheme;
+  [[nodiscard]] const Mesh& mesh() const { return *m; }
+  void add_to(Matrix& eq, double sign) const;
+};
+inline ConvectionTerm div(const Mesh& mesh, std::span<const double> flux, const ScalarField& phi,
+                          Convection scheme) {
+  return {&mesh, flux, &phi, scheme};
+}
 
 // Time derivative: (c0 phi + c1 phi_old + c2 phi_oldold) / dt, BDF2 or Euler (1, -1, 0) for the
 // first step after a start. BDF2 on variable steps, with w = dt / dt_old (the previous step):
@@ -62,7 +90,37 @@ struct TimeScheme {
     return {(1 + 2 * w) / (1 + w), -(1 + w), w * w / (1 + w)};
   }
 };
-Matrix ddt(const Mesh& mesh, const TimeScheme& ts, std::span<const double> old,
-           std::span<const double> oldold);
+struct DdtTerm {
+  const Mesh* m;
+  TimeScheme ts;
+  std::span<const double> old, oldold;
+  [[nodiscard]] const Mesh& mesh() const { return *m; }
+  void add_to(Matrix& eq, double sign) const;
+};
+inline DdtTerm ddt(const Mesh& mesh, const TimeScheme& ts, std::span<const double> old,
+                   std::span<const double> oldold) {
+  return {&mesh, ts, old, oldold};
+}
+
+// Sums of terms, evaluated term by term into the matrix they are assigned or added to.
+template <Term A, Term B>
+struct TermSum {
+  A a;
+  B b;
+  double sign_b;
+  [[nodiscard]] const Mesh& mesh() const { return a.mesh(); }
+  void add_to(Matrix& eq, double sign) const {
+    a.add_to(eq, sign);
+    b.add_to(eq, sign * sign_b);
+  }
+};
+template <Term A, Term B>
+TermSum<A, B> operator+(const A& a, const B& b) {
+  return {a, b, 1.0};
+}
+template <Term A, Term B>
+TermSum<A, B> operator-(const A& a, const B& b) {
+  return {a, b, -1.0};
+}
 
 }  // namespace auvloop::engine::fv

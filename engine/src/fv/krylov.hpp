@@ -1,0 +1,49 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Single-level iterative solvers on a BlockCsr, private to engine/src; every vector operation and
+// product is parallel with fixed-block sums (parallel.hpp), so the iterates do not depend on the
+// number of threads. All stop at |b - A x| <= tolerance |b| (2-norms), report OpenFOAM's
+// normalised residuals (linear_solver.hpp) at the start and end, and throw std::runtime_error
+// when the iteration limit is reached or the residual stops being finite.
+//
+//   gauss_seidel_solve  symmetric hybrid Gauss-Seidel sweeps (a forward sweep, then a backward one;
+//                       sparse.hpp), the residual checked after each pair: the momentum solver
+//                       (OpenFOAM's smoothSolver with symGaussSeidel). Diagonally dominant
+//                       matrices only; when `max_sweeps` pairs have not converged it reports
+//                       false in `converged` instead of throwing, for the caller to go on with a
+//                       Krylov method from the current x.
+//   bicgstab            van der Vorst's BiCGSTAB, right-preconditioned by the inverse diagonal
+//                       (Jacobi) or by one symmetric hybrid Gauss-Seidel sweep pair from zero,
+//                       restarted with a new shadow residual when it breaks down.
+//   jacobi_cg           conjugate gradients with the Jacobi preconditioner (symmetric positive
+//                       definite A).
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "auvloop/engine/fv/linear_solver.hpp"
+#include "sparse.hpp"
+
+namespace auvloop::engine::fv {
+
+// Work vectors of a solver, sized on first use and kept (a solve then allocates nothing).
+struct KrylovWork {
+  std::vector<double> r, r_hat, p, v, s, t, y, z;
+  void resize(int n);
+};
+
+struct SmootherResult {
+  SolveStats stats;
+  bool converged = false;
+};
+
+SmootherResult gauss_seidel_solve(const BlockCsr& A, std::span<const double> b, std::span<double> x,
+                                  double tolerance, int max_sweeps, KrylovWork& work);
+enum class Preconditioner { jacobi, gauss_seidel };
+SolveStats bicgstab(const BlockCsr& A, std::span<const double> b, std::span<double> x,
+                    double tolerance, int max_iterations, KrylovWork& work,
+                    Preconditioner preconditioner);
+SolveStats jacobi_cg(const BlockCsr& A, std::span<const double> b, std::span<double> x,
+                     double tolerance, int max_iterations, KrylovWork& work);
+
+}  // namespace auvloop::engine::fv
