@@ -36,11 +36,22 @@ int pair_rows(const BlockCsr& A, std::vector<int>& agg) {
   const int n = A.rows();
   agg.assign(static_cast<std::size_t>(n), -1);
   int count = 0;
+  std::vector<int> order;
   for (int i = 0; i < n; ++i) {
     if (agg[static_cast<std::size_t>(i)] >= 0) continue;
     int free_best = -1, any_best = -1;
     double free_w = -1, any_w = -1;
-    for (int k = A.row_begin(i); k < A.row_end(i); ++k) {
+    // The entries in the order the pattern was given (the faces' order on the finest level):
+    // which of equally strong neighbours pairs decides the aggregates' shapes on uniform grids,
+    // and this order measured twice as good as by column (17 against 35 iterations per step on
+    // the 64^3 cavity).
+    order.clear();
+    for (int k = A.row_begin(i); k < A.row_end(i); ++k) order.push_back(k);
+    std::sort(order.begin(), order.end(), [&](int a, int b) {
+      return A.permutation()[static_cast<std::size_t>(a)] <
+             A.permutation()[static_cast<std::size_t>(b)];
+    });
+    for (int k : order) {
       const int j = A.column(k);
       const double w = std::abs(A.value[static_cast<std::size_t>(k)]);
       if (agg[static_cast<std::size_t>(j)] < 0 && w > free_w) {
@@ -181,6 +192,7 @@ struct AmgPcg::Hierarchy {
       BlockCsr coarse = fine.to_coarse.build(F, std::move(agg_mid), nc);
       levels.emplace_back();
       levels.back().own = std::move(coarse);
+      levels.back().own.keep_single();
       levels.back().A = &levels.back().own;
     }
     for (Level& L : levels) L.allocate(L.A->rows());
@@ -218,16 +230,14 @@ struct AmgPcg::Hierarchy {
     const Restriction& R = L.to_coarse;
     parallel_for(
         A.rows(), [&](int i) { x[static_cast<std::size_t>(i)] = 0; }, kVectorGrain);
-    A.sweep(b, x, false, true, L.scratch);
+    A.sweep<true>(b, x, false, true, L.scratch);
     parallel_for(
         C.A->rows(),
         [&](int I) {  // restricted residual
           const auto Is = static_cast<std::size_t>(I);
           double s = 0;
           for (int m = R.member_start[Is]; m < R.member_start[Is + 1]; ++m) {
-            const int i = R.member[static_cast<std::size_t>(m)];
-            const auto is = static_cast<std::size_t>(i);
-            s += b[is] - A.diag[is] * x[is] - A.off_diagonal(i, x);
+            s += A.row_residual<true>(R.member[static_cast<std::size_t>(m)], b, x);
           }
           C.b[Is] = s;
         },
@@ -244,7 +254,7 @@ struct AmgPcg::Hierarchy {
           x[is] += C.x[static_cast<std::size_t>(R.agg[is])];
         },
         kVectorGrain);
-    A.sweep(b, x, true, false, L.scratch);
+    A.sweep<true>(b, x, true, false, L.scratch);
   }
 
   // Two flexible-CG steps on level l (its b to its x) preconditioned by cycle(l), the second
@@ -257,7 +267,7 @@ struct AmgPcg::Hierarchy {
     const int n = A.rows();
     const auto each = [&](auto&& fn) { parallel_for(n, fn, kVectorGrain); };
     cycle(l, L.b, L.c1);
-    const double rho1 = A.multiply_dot(L.c1, L.v1);
+    const double rho1 = A.multiply_dot<true>(L.c1, L.v1);
     const auto [alpha1, b_squared] = dot2(L.b, L.c1, L.b);
     if (!(rho1 > 0)) {  // keep the plain cycle
       L.x = L.c1;
@@ -281,7 +291,7 @@ struct AmgPcg::Hierarchy {
       return;
     }
     cycle(l, L.r1, L.x);  // c2 = L.x
-    const double beta = A.multiply_dot(L.x, L.v2);
+    const double beta = A.multiply_dot<true>(L.x, L.v2);
     const auto [gamma, alpha2] = dot2(L.x, L.v1, L.r1);
     const double rho2 = beta - gamma * gamma / rho1;
     if (!(rho2 > 0)) {
@@ -314,6 +324,8 @@ SolveStats AmgPcg::solve(const BlockCsr& A, bool changed, std::span<const double
     changed = true;
   }
   if (&A != h_->levels[0].A) throw std::logic_error("AmgPcg: solve with another matrix");
+  if (!A.keeps_single())
+    throw std::logic_error("AmgPcg: the matrix must keep its single-precision copy (keep_single)");
   if (changed) h_->load_coefficients();
 
   auto& H = *h_;

@@ -252,7 +252,10 @@ SolveStats LinearSolver::solve_symmetric(const Matrix& m, std::span<double> x,
   // (-A) x = -b.
   const bool changed = I.load(m, -1.0);
   if (method == SymmetricMethod::cg_amg) {
-    if (!I.amg) I.amg = std::make_unique<AmgPcg>();
+    if (!I.amg) {
+      I.amg = std::make_unique<AmgPcg>();
+      I.csr.keep_single();  // the multigrid cycle reads the coefficients in single precision
+    }
     return I.amg->solve(I.csr, changed, I.b, x, I.tolerance, 2000);
   }
   if (method == SymmetricMethod::cg_jacobi) {

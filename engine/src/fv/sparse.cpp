@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "sparse.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -26,29 +27,64 @@ BlockCsr::BlockCsr(int n, std::span<const int> row_start, std::span<const int> c
   for (int k = 0; k <= blocks; ++k)
     block_start_[static_cast<std::size_t>(k)] =
         static_cast<int>(static_cast<long long>(n) * k / blocks);
+  mid_.resize(static_cast<std::size_t>(n));
+  std::vector<int> own;
   for (int blk = 0; blk < blocks; ++blk) {
     const int lo = block_begin(blk), hi = block_end(blk);
     for (int i = lo; i < hi; ++i) {
       int out = row_begin(i);
-      for (const bool own : {true, false}) {
-        for (int k = row_begin(i); k < row_end(i); ++k) {
-          const int j = columns[static_cast<std::size_t>(k)];
-          if ((j >= lo && j < hi) != own) continue;
-          column_[static_cast<std::size_t>(out)] = j;
-          permutation_[static_cast<std::size_t>(out)] = k;
-          ++out;
-        }
-        if (own) split_[static_cast<std::size_t>(i)] = out;
+      own.clear();
+      for (int k = row_begin(i); k < row_end(i); ++k) {
+        const int j = columns[static_cast<std::size_t>(k)];
+        if (j >= lo && j < hi) own.push_back(k);
+      }
+      std::sort(own.begin(), own.end(), [&](int a, int b) {
+        return columns[static_cast<std::size_t>(a)] < columns[static_cast<std::size_t>(b)];
+      });
+      mid_[static_cast<std::size_t>(i)] = out;
+      for (int k : own) {
+        const int j = columns[static_cast<std::size_t>(k)];
+        if (j < i) ++mid_[static_cast<std::size_t>(i)];
+        column_[static_cast<std::size_t>(out)] = j;
+        permutation_[static_cast<std::size_t>(out)] = k;
+        ++out;
+      }
+      split_[static_cast<std::size_t>(i)] = out;
+      for (int k = row_begin(i); k < row_end(i); ++k) {
+        const int j = columns[static_cast<std::size_t>(k)];
+        if (j >= lo && j < hi) continue;
+        column_[static_cast<std::size_t>(out)] = j;
+        permutation_[static_cast<std::size_t>(out)] = k;
+        ++out;
       }
     }
   }
 }
 
 void BlockCsr::coefficients_changed() {
-  parallel_for(n_, [&](int i) {
-    const auto s = static_cast<std::size_t>(i);
-    inv_diag_[s] = 1.0 / diag[s];
-  });
+  parallel_for(
+      n_,
+      [&](int i) {
+        const auto s = static_cast<std::size_t>(i);
+        inv_diag_[s] = 1.0 / diag[s];
+        if (single_) {
+          diag_single_[s] = static_cast<float>(diag[s]);
+          inv_diag_single_[s] = static_cast<float>(inv_diag_[s]);
+          for (int k = row_begin(i); k < row_end(i); ++k)
+            value_single_[static_cast<std::size_t>(k)] =
+                static_cast<float>(value[static_cast<std::size_t>(k)]);
+        }
+      },
+      kRowGrain);
+}
+
+void BlockCsr::keep_single() {
+  if (single_) return;
+  single_ = true;
+  value_single_.resize(value.size());
+  diag_single_.resize(diag.size());
+  inv_diag_single_.resize(diag.size());
+  coefficients_changed();
 }
 
 void BlockCsr::multiply(std::span<const double> x, std::span<double> y) const {
@@ -63,13 +99,15 @@ void BlockCsr::multiply(std::span<const double> x, std::span<double> y) const {
       kRowGrain);
 }
 
+template <bool Single>
 double BlockCsr::multiply_dot(std::span<const double> x, std::span<double> y) const {
   return parallel_sum<1>(
       n_,
       [&](int b, int e, std::array<double, 1>& sum) {
         for (int i = b; i < e; ++i) {
           const auto s = static_cast<std::size_t>(i);
-          y[s] = diag[s] * x[s] + off_diagonal(i, x);
+          const double d = Single ? static_cast<double>(diag_single_[s]) : diag[s];
+          y[s] = d * x[s] + off_diagonal<Single>(i, x);
           sum[0] += x[s] * y[s];
         }
       },
@@ -107,6 +145,7 @@ BlockCsr::Residual BlockCsr::residual(std::span<const double> b, std::span<const
   return {s[0], s[1], s[2], s[3]};
 }
 
+template <bool Single>
 void BlockCsr::sweep(std::span<const double> b, std::span<double> x, bool backward, bool zero_x,
                      std::span<double> scratch) const {
   const bool coupled = blocks() > 1 && !zero_x;
@@ -117,19 +156,33 @@ void BlockCsr::sweep(std::span<const double> b, std::span<double> x, bool backwa
         if (split_[s] == row_end(i)) continue;
         double e = 0;
         for (int k = split_[s]; k < row_end(i); ++k)
-          e += value[static_cast<std::size_t>(k)] * x[static_cast<std::size_t>(column(k))];
+          e += coefficient<Single>(k) * x[static_cast<std::size_t>(column(k))];
         scratch[s] = e;
       }
     });
   }
-  parallel_blocks(blocks(), [&](int blk) {  // 2. Gauss-Seidel in each block
+  // 2. Gauss-Seidel in each block. The entries the sweep has just updated (columns below the
+  // row going forward, above it going backward) are summed apart from the others, nearest row
+  // last, so that only one multiply-add waits for the previous row's result.
+  parallel_blocks(blocks(), [&](int blk) {
     const auto relax = [&](int i) {
       const auto s = static_cast<std::size_t>(i);
-      double v = b[s];
-      for (int k = row_begin(i); k < split_[s]; ++k)
-        v -= value[static_cast<std::size_t>(k)] * x[static_cast<std::size_t>(column(k))];
-      if (coupled && split_[s] != row_end(i)) v -= scratch[s];
-      x[s] = v * inv_diag_[s];
+      const int begin = row_begin(i), mid = mid_[s], split = split_[s];
+      double older = 0, recent = 0;
+      if (backward) {
+        for (int k = begin; k < mid; ++k)
+          older += coefficient<Single>(k) * x[static_cast<std::size_t>(column(k))];
+        for (int k = split; k-- > mid;)
+          recent += coefficient<Single>(k) * x[static_cast<std::size_t>(column(k))];
+      } else {
+        for (int k = mid; k < split; ++k)
+          older += coefficient<Single>(k) * x[static_cast<std::size_t>(column(k))];
+        for (int k = begin; k < mid; ++k)
+          recent += coefficient<Single>(k) * x[static_cast<std::size_t>(column(k))];
+      }
+      double v = b[s] - older;
+      if (coupled && split != row_end(i)) v -= scratch[s];
+      x[s] = (v - recent) * (Single ? static_cast<double>(inv_diag_single_[s]) : inv_diag_[s]);
     };
     if (backward) {
       for (int i = block_end(blk); i-- > block_begin(blk);) relax(i);
@@ -138,6 +191,13 @@ void BlockCsr::sweep(std::span<const double> b, std::span<double> x, bool backwa
     }
   });
 }
+
+template double BlockCsr::multiply_dot<false>(std::span<const double>, std::span<double>) const;
+template double BlockCsr::multiply_dot<true>(std::span<const double>, std::span<double>) const;
+template void BlockCsr::sweep<false>(std::span<const double>, std::span<double>, bool, bool,
+                                     std::span<double>) const;
+template void BlockCsr::sweep<true>(std::span<const double>, std::span<double>, bool, bool,
+                                    std::span<double>) const;
 
 double dot(std::span<const double> a, std::span<const double> b) {
   return parallel_sum<1>(static_cast<int>(a.size()), [&](int lo, int hi, std::array<double, 1>& s) {

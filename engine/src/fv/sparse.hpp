@@ -3,10 +3,11 @@
 // every iterative solver is made of, private to engine/src: products, residual norms and the
 // hybrid Gauss-Seidel smoother, all parallel (oneTBB) and bitwise independent of the thread count.
 //
-// Layout: diag[i], then the off-diagonal entries of row i at [row_start[i], row_start[i + 1]),
-// those whose column lies in the row's own block first (up to split[i]), then those in other
-// blocks. Blocks are contiguous row ranges of equal size, a power of two of them (at most 16,
-// each of at least 512 rows), so the partition depends on the number of rows only.
+// Layout: diag[i], then the off-diagonal entries of row i at [row_start[i], row_start[i + 1]):
+// those whose column lies in the row's own block first (up to split[i]), by ascending column
+// (below the row up to mid[i]), then those in other blocks. Blocks are contiguous row ranges of
+// equal size, a power of two of them (at most 16, each of at least 512 rows), so the partition
+// depends on the number of rows only.
 //
 // Hybrid Gauss-Seidel (sweep): inside a block a Gauss-Seidel sweep, between blocks a Jacobi step
 // (Henson and Yang's hybrid smoother of BoomerAMG). One sweep:
@@ -50,21 +51,38 @@ class BlockCsr {
   [[nodiscard]] std::span<const int> permutation() const { return permutation_; }
 
   // Coefficients (sized by the constructor): diag per row, value per entry. Call
-  // coefficients_changed() after writing them (it refreshes the inverse diagonal).
+  // coefficients_changed() after writing them (it refreshes the inverse diagonal, and the
+  // single-precision copy when one is kept).
   std::vector<double> diag, value;
   void coefficients_changed();
   [[nodiscard]] const std::vector<double>& inverse_diag() const { return inv_diag_; }
 
+  // Keeps a single-precision copy of the coefficients for the kernels called with Single = true:
+  // a preconditioner (the multigrid hierarchy) reads 8 instead of 12 bytes per entry, and the
+  // arithmetic stays in double (x, b and every sum). Deterministic as the rest.
+  void keep_single();
+  [[nodiscard]] bool keeps_single() const { return single_; }
+
   // y = A x.
   void multiply(std::span<const double> x, std::span<double> y) const;
   // y = A x and returns x . y (one pass).
+  template <bool Single = false>
   double multiply_dot(std::span<const double> x, std::span<double> y) const;
   // sum_j a_ij x_j over the off-diagonal entries of row i.
+  template <bool Single = false>
   [[nodiscard]] double off_diagonal(int i, std::span<const double> x) const {
     double s = 0;
     for (int k = row_begin(i); k < row_end(i); ++k)
-      s += value[static_cast<std::size_t>(k)] * x[static_cast<std::size_t>(column(k))];
+      s += coefficient<Single>(k) * x[static_cast<std::size_t>(column(k))];
     return s;
+  }
+  // b_i - (A x)_i.
+  template <bool Single = false>
+  [[nodiscard]] double row_residual(int i, std::span<const double> b,
+                                    std::span<const double> x) const {
+    const auto s = static_cast<std::size_t>(i);
+    const double d = Single ? static_cast<double>(diag_single_[s]) : diag[s];
+    return b[s] - d * x[s] - off_diagonal<Single>(i, x);
   }
 
   // r = b - A x and the norms of a linear solve's start (one pass): sum |r|, sum r^2, sum b^2 and
@@ -77,13 +95,24 @@ class BlockCsr {
 
   // One hybrid Gauss-Seidel sweep on A x = b (above). `zero_x`: x is zero on entry (the inter-block
   // terms vanish and x is not read). `scratch`: n values.
+  template <bool Single = false>
   void sweep(std::span<const double> b, std::span<double> x, bool backward, bool zero_x,
              std::span<double> scratch) const;
 
  private:
+  template <bool Single>
+  [[nodiscard]] double coefficient(int k) const {
+    if constexpr (Single) {
+      return static_cast<double>(value_single_[static_cast<std::size_t>(k)]);
+    } else {
+      return value[static_cast<std::size_t>(k)];
+    }
+  }
   int n_ = 0;
-  std::vector<int> row_start_, split_, column_, permutation_, block_start_;
+  std::vector<int> row_start_, mid_, split_, column_, permutation_, block_start_;
   std::vector<double> inv_diag_;
+  bool single_ = false;
+  std::vector<float> value_single_, diag_single_, inv_diag_single_;
 };
 
 // Deterministic parallel vector kernels (fixed-block sums, parallel.hpp).
