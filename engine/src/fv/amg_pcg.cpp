@@ -9,6 +9,7 @@
 
 #include <Eigen/Dense>
 
+#include "krylov.hpp"
 #include "parallel.hpp"
 
 namespace auvloop::engine::fv {
@@ -330,13 +331,11 @@ SolveStats AmgPcg::solve(const BlockCsr& A, bool changed, std::span<const double
 
   auto& H = *h_;
   const int n = A.rows();
-  const auto res = A.residual(b, x, H.r);
-  SolveStats stats;
-  const double norm = res.normalisation + 1e-300;
-  stats.initial_residual = stats.final_residual = res.l1 / norm;
-  const double bnorm = std::max(std::sqrt(res.b_squared), 1e-300);
-  double rnorm = std::sqrt(res.l2_squared);
-  if (rnorm <= tolerance * bnorm) return stats;
+  const auto start = start_solve(A, b, x, H.r);
+  SolveStats stats = start.stats;
+  const double norm = start.normalisation, bnorm = start.bnorm;
+  double rnorm = start.rnorm;
+  if (start.converged(tolerance)) return stats;
   H.cycle(0, H.r, H.z);
   parallel_for(n,
                [&](int i) { H.p[static_cast<std::size_t>(i)] = H.z[static_cast<std::size_t>(i)]; });

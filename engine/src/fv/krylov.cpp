@@ -40,6 +40,20 @@ void precondition_gs(const BlockCsr& A, std::span<const double> r, std::span<dou
   A.sweep(r, z, true, false, scratch);
 }
 
+}  // namespace
+
+SolveStart start_solve(const BlockCsr& A, std::span<const double> b, std::span<const double> x,
+                       std::span<double> r) {
+  const auto res = A.residual(b, x, r);
+  SolveStart s;
+  s.normalisation = res.normalisation + 1e-300;
+  s.stats.initial_residual = s.stats.final_residual = res.l1 / s.normalisation;
+  s.bnorm = std::max(std::sqrt(res.b_squared), 1e-300);
+  s.rnorm = std::sqrt(res.l2_squared);
+  return s;
+}
+
+namespace {
 [[noreturn]] void fail(const char* method, int iterations, double relative, double tolerance) {
   throw std::runtime_error(fmt::format(
       "{} did not converge in {} iterations: relative residual {:.3g} (tolerance {:.3g})", method,
@@ -50,12 +64,11 @@ void precondition_gs(const BlockCsr& A, std::span<const double> r, std::span<dou
 SmootherResult gauss_seidel_solve(const BlockCsr& A, std::span<const double> b, std::span<double> x,
                                   double tolerance, int max_sweeps, KrylovWork& work) {
   work.resize(A.rows());
-  const auto res = A.residual(b, x, work.r);
+  const auto start = start_solve(A, b, x, work.r);
   SmootherResult out;
-  const double norm = res.normalisation + 1e-300;
-  out.stats.initial_residual = out.stats.final_residual = res.l1 / norm;
-  const double bnorm = std::max(std::sqrt(res.b_squared), 1e-300);
-  double rnorm = std::sqrt(res.l2_squared);
+  out.stats = start.stats;
+  const double norm = start.normalisation, bnorm = start.bnorm;
+  double rnorm = start.rnorm;
   for (int sweep = 1; rnorm > tolerance * bnorm; ++sweep) {
     if (sweep > max_sweeps) return out;
     A.sweep(b, x, false, false, work.s);
@@ -76,20 +89,18 @@ SolveStats bicgstab(const BlockCsr& A, std::span<const double> b, std::span<doub
   const int n = A.rows();
   w.resize(n);
   const auto& inv = A.inverse_diag();
-  const auto res = A.residual(b, x, w.r);
-  SolveStats stats;
-  const double norm = res.normalisation + 1e-300;
-  stats.initial_residual = stats.final_residual = res.l1 / norm;
-  const double bnorm = std::max(std::sqrt(res.b_squared), 1e-300);
-  double rnorm = std::sqrt(res.l2_squared);
-  if (rnorm <= tolerance * bnorm) return stats;
+  const auto start = start_solve(A, b, x, w.r);
+  SolveStats stats = start.stats;
+  const double norm = start.normalisation, bnorm = start.bnorm;
+  double rnorm = start.rnorm;
+  if (start.converged(tolerance)) return stats;
   const auto each = [&](auto&& fn) { parallel_for(n, fn); };
   each([&](int i) {
     const auto k = static_cast<std::size_t>(i);
     w.r_hat[k] = w.r[k];
     w.p[k] = w.v[k] = 0;
   });
-  double rho = 1, alpha = 1, omega = 1, r_hat_squared = res.l2_squared;
+  double rho = 1, alpha = 1, omega = 1, r_hat_squared = rnorm * rnorm;
   for (int it = 1; it <= max_iterations; ++it) {
     double rho_new = dot(w.r_hat, w.r);
     if (std::abs(rho_new) < 1e-30 * r_hat_squared) {  // breakdown: restart from the residual
@@ -159,13 +170,11 @@ SolveStats jacobi_cg(const BlockCsr& A, std::span<const double> b, std::span<dou
   const int n = A.rows();
   w.resize(n);
   const auto& inv = A.inverse_diag();
-  const auto res = A.residual(b, x, w.r);
-  SolveStats stats;
-  const double norm = res.normalisation + 1e-300;
-  stats.initial_residual = stats.final_residual = res.l1 / norm;
-  const double bnorm = std::max(std::sqrt(res.b_squared), 1e-300);
-  double rnorm = std::sqrt(res.l2_squared);
-  if (rnorm <= tolerance * bnorm) return stats;
+  const auto start = start_solve(A, b, x, w.r);
+  SolveStats stats = start.stats;
+  const double norm = start.normalisation, bnorm = start.bnorm;
+  double rnorm = start.rnorm;
+  if (start.converged(tolerance)) return stats;
   double rz = parallel_sum<1>(n, [&](int lo, int hi, std::array<double, 1>& s) {
     for (int i = lo; i < hi; ++i) {
       const auto k = static_cast<std::size_t>(i);

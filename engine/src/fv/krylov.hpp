@@ -32,6 +32,16 @@ struct KrylovWork {
   void resize(int n);
 };
 
+// The start of an iterative solve: r = b - A x, the normalised residual (initial and, so far,
+// final), OpenFOAM's normalisation for the later ones, |b| and |r|. converged(): |r| <= tol |b|.
+struct SolveStart {
+  SolveStats stats;
+  double normalisation = 0, bnorm = 0, rnorm = 0;
+  [[nodiscard]] bool converged(double tolerance) const { return rnorm <= tolerance * bnorm; }
+};
+SolveStart start_solve(const BlockCsr& A, std::span<const double> b, std::span<const double> x,
+                       std::span<double> r);
+
 struct SmootherResult {
   SolveStats stats;
   bool converged = false;
