@@ -155,7 +155,10 @@ struct EigenCopy {
 struct LinearSolver::Impl {
   const Mesh& mesh;
   double tolerance;
-  BlockCsr csr;                 // the iterative methods' copy of the matrix
+  // The iterative methods' copy of the matrix, shared by every equation solved here (momentum
+  // and pressure have the same pattern); once cg-amg has run it keeps its single-precision copy
+  // too, refreshed by every load that changes a coefficient (one more pass over the entries).
+  BlockCsr csr;
   std::vector<int> entry_face;  // per csr entry: f where the row owns face f (upper), else ~f
   std::vector<double> b;        // the right-hand side as loaded
   bool loaded = false;

@@ -40,8 +40,8 @@ struct PimpleSettings {
   // where the Cholesky factor fills in too much; empty means choose by the grid.
   std::optional<SymmetricMethod> pressure_solver;
   // Momentum predictor: Jacobi-preconditioned BiCGSTAB, measured fastest (docs/cfd.md,
-  // "Performance": on the 64^3 cavity 30 iterations per step against 44 symmetric Gauss-Seidel
-  // sweep pairs, 0.59 against 0.74 s per step).
+  // "Performance": on the 64^3 cavity 29 iterations per step against 44 symmetric Gauss-Seidel
+  // sweep pairs, 0.61 against 0.71 s per step on one thread).
   AsymmetricMethod momentum_solver = AsymmetricMethod::bicgstab_jacobi;
   double tolerance = 1e-8;        // relative tolerance of the iterative linear solvers
   double momentum_tolerance = 0;  // the momentum predictor's, if > 0 (else `tolerance`)
