@@ -33,17 +33,8 @@ std::vector<double> div(const Mesh& mesh, std::span<const double> face_flux) {
 }
 
 void div(const Mesh& mesh, std::span<const double> face_flux, std::span<double> out) {
-  const int internal = mesh.internal_faces();
-  scatter_faces(
-      mesh,
-      [&](int b, int e) {
-        for (auto c = static_cast<std::size_t>(b); c < static_cast<std::size_t>(e); ++c) out[c] = 0;
-      },
-      [&](int f, bool own, bool nei) {
-        const double F = face_flux[static_cast<std::size_t>(f)];
-        if (own) out[static_cast<std::size_t>(mesh.owner(f))] += F;
-        if (nei && f < internal) out[static_cast<std::size_t>(mesh.neighbour(f))] -= F;
-      });
+  sum_faces(
+      mesh, out, [&](int f) { return face_flux[static_cast<std::size_t>(f)]; }, -1.0);
   parallel_for(mesh.cells(), [&](int c) { out[static_cast<std::size_t>(c)] /= mesh.volume(c); });
 }
 

@@ -331,29 +331,4 @@ SolveStats LinearSolver::solve_asymmetric(const Matrix& m, std::span<double> x,
   return stats;
 }
 
-double normalised_residual(const Mesh& mesh, const Matrix& m, std::span<const double> x) {
-  const int n = mesh.cells();
-  const double mean = parallel_sum<1>(n,
-                                      [&](int lo, int hi, std::array<double, 1>& s) {
-                                        for (int i = lo; i < hi; ++i)
-                                          s[0] += x[static_cast<std::size_t>(i)];
-                                      })[0] /
-                      std::max(n, 1);
-  std::vector<double> Ax(static_cast<std::size_t>(n));
-  m.multiply(mesh, x, Ax);
-  // A xbar = xbar (row sums of A); the row sums by the matrix product of a vector of ones.
-  std::vector<double> row_sum(static_cast<std::size_t>(n));
-  const std::vector<double> ones(static_cast<std::size_t>(n), 1.0);
-  m.multiply(mesh, ones, row_sum);
-  const auto s = parallel_sum<2>(n, [&](int lo, int hi, std::array<double, 2>& acc) {
-    for (int i = lo; i < hi; ++i) {
-      const auto c = static_cast<std::size_t>(i);
-      const double axbar = row_sum[c] * mean;
-      acc[0] += std::abs(m.source[c] - Ax[c]);
-      acc[1] += std::abs(Ax[c] - axbar) + std::abs(m.source[c] - axbar);
-    }
-  });
-  return s[0] / (s[1] + 1e-300);
-}
-
 }  // namespace auvloop::engine::fv

@@ -22,6 +22,7 @@
 #include <algorithm>
 #include <array>
 #include <cstddef>
+#include <span>
 
 #include "auvloop/engine/fv/mesh.hpp"
 
@@ -132,6 +133,24 @@ void scatter_faces(const Mesh& mesh, Cells&& cells, Face&& face) {
     for (int t : fb.faces(k))
       face(t >> 2, (t & FaceBlocks::kOwner) != 0, (t & FaceBlocks::kNeighbour) != 0);
   });
+}
+
+// out[c] = the sum of value(f) over the faces of cell c, the neighbour side taking
+// neighbour_sign * value(f) (-1: a net flux out of the cell, +1: a sum of magnitudes).
+template <class Value>
+void sum_faces(const Mesh& mesh, std::span<double> out, Value&& value, double neighbour_sign) {
+  const int internal = mesh.internal_faces();
+  scatter_faces(
+      mesh,
+      [&](int b, int e) {
+        for (auto c = static_cast<std::size_t>(b); c < static_cast<std::size_t>(e); ++c) out[c] = 0;
+      },
+      [&](int f, bool own, bool nei) {
+        const double v = value(f);
+        if (own) out[static_cast<std::size_t>(mesh.owner(f))] += v;
+        if (nei && f < internal)
+          out[static_cast<std::size_t>(mesh.neighbour(f))] += neighbour_sign * v;
+      });
 }
 
 }  // namespace auvloop::engine::fv

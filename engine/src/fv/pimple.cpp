@@ -32,17 +32,8 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 std::pair<double, int> courant(const Mesh& mesh, std::span<const double> phi, double dt) {
   Scratch<double> sum(static_cast<std::size_t>(mesh.cells()));
-  const int internal = mesh.internal_faces();
-  scatter_faces(
-      mesh,
-      [&](int b, int e) {
-        for (auto c = static_cast<std::size_t>(b); c < static_cast<std::size_t>(e); ++c) sum[c] = 0;
-      },
-      [&](int f, bool own, bool nei) {
-        const double a = std::abs(phi[static_cast<std::size_t>(f)]);
-        if (own) sum[static_cast<std::size_t>(mesh.owner(f))] += a;
-        if (nei && f < internal) sum[static_cast<std::size_t>(mesh.neighbour(f))] += a;
-      });
+  sum_faces(
+      mesh, *sum, [&](int f) { return std::abs(phi[static_cast<std::size_t>(f)]); }, 1.0);
   std::pair<double, int> worst{0.0, 0};
   for (int c = 0; c < mesh.cells(); ++c) {
     const double co = 0.5 * dt * sum[static_cast<std::size_t>(c)] / mesh.volume(c);

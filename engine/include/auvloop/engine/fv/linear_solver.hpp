@@ -43,8 +43,10 @@ const char* to_string(AsymmetricMethod m);
 AsymmetricMethod asymmetric_method_from_string(const std::string& s);
 
 struct SolveStats {
-  int iterations = 0;           // Krylov iterations, or Gauss-Seidel sweep pairs
-  double initial_residual = 0;  // |b - A x0| / normalisation (OpenFOAM style)
+  int iterations = 0;  // Krylov iterations, or Gauss-Seidel sweep pairs
+  // OpenFOAM's normalised residual sum |b - A x| / sum (|A x - A xbar| + |b - A xbar|), xbar the
+  // mean of x (scale-free, so one tolerance fits every equation), at the start of the solve
+  double initial_residual = 0;
   double final_residual = 0;
   bool factorised = false;  // a numeric factorisation was (re)computed in this call
 };
@@ -66,9 +68,5 @@ class LinearSolver {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
-
-// OpenFOAM's normalised residual: sum |b - A x| / sum (|A x - A xbar| + |b - A xbar|), xbar the
-// mean of x; scale-free, so one tolerance fits every equation.
-double normalised_residual(const Mesh& mesh, const Matrix& m, std::span<const double> x);
 
 }  // namespace auvloop::engine::fv
