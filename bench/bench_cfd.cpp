@@ -9,7 +9,8 @@
 //           and zero-gradient U on the downstream part, no-slip on the hull; sea water.
 //   bench_cfd [--case cavity|hull] [--preset coarse] [--n N] [--steps K] [--outer M]
 //             [--correctors C] [--pressure cholmod|cholmod-pcg|cg-ic|cg-dic|cg-jacobi|cg-amg]
-//             [--momentum gauss-seidel|bicgstab|bicgstab-ilut] [--momentum-tolerance TOL]
+//             [--momentum gauss-seidel|bicgstab|bicgstab-ilut] [--tolerance TOL]
+//             [--momentum-tolerance TOL] [--residual-norm relative|normalised]
 //             [--threads T[,T...]] [--repeat R] [--re RE] [--co COURANT] [--2d 1]
 //             [--time bdf2|euler] [--convection van-leer|linear-upwind|upwind]
 // With several thread counts (--threads 1,2) each runs in turn on the same mesh, R times over
@@ -38,9 +39,9 @@ namespace fv = engine::fv;
 namespace {
 struct Options {
   std::string case_name = "cavity", preset = "coarse", pressure, time = "bdf2";
-  std::string convection = "van-leer", momentum, threads = "1";
+  std::string convection = "van-leer", momentum, threads = "1", residual_norm = "relative";
   int n = 32, steps = 10, outer = 1, correctors = 2, two_d = 0, repeat = 1;
-  double re = 100, co = 1, momentum_tolerance = 0;
+  double re = 100, co = 1, tolerance = 1e-6, momentum_tolerance = 0;
 };
 
 Options parse(int argc, char** argv) {
@@ -48,9 +49,10 @@ Options parse(int argc, char** argv) {
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string key = argv[i], v = argv[i + 1];
     std::map<std::string, std::string*> strings{
-        {"--case", &o.case_name}, {"--preset", &o.preset},         {"--pressure", &o.pressure},
-        {"--time", &o.time},      {"--convection", &o.convection}, {"--momentum", &o.momentum},
-        {"--threads", &o.threads}};
+        {"--case", &o.case_name},        {"--preset", &o.preset},
+        {"--pressure", &o.pressure},     {"--time", &o.time},
+        {"--convection", &o.convection}, {"--momentum", &o.momentum},
+        {"--threads", &o.threads},       {"--residual-norm", &o.residual_norm}};
     std::map<std::string, int*> ints{{"--n", &o.n},           {"--steps", &o.steps},
                                      {"--outer", &o.outer},   {"--correctors", &o.correctors},
                                      {"--repeat", &o.repeat}, {"--2d", &o.two_d}};
@@ -62,6 +64,8 @@ Options parse(int argc, char** argv) {
       o.re = std::atof(v.c_str());
     else if (key == "--co")
       o.co = std::atof(v.c_str());
+    else if (key == "--tolerance")
+      o.tolerance = std::atof(v.c_str());
     else if (key == "--momentum-tolerance")
       o.momentum_tolerance = std::atof(v.c_str());
     else {
@@ -174,7 +178,8 @@ int main(int argc, char** argv) {
   s.convection = convection(o.convection);
   if (!o.pressure.empty()) s.pressure_solver = fv::symmetric_method_from_string(o.pressure);
   if (!o.momentum.empty()) s.momentum_solver = fv::asymmetric_method_from_string(o.momentum);
-  s.tolerance = 1e-6;
+  s.tolerance = o.tolerance;
+  s.residual_norm = fv::residual_norm_from_string(o.residual_norm);
   if (o.momentum_tolerance > 0) s.momentum_tolerance = o.momentum_tolerance;
   s.max_courant = 1e9;  // a benchmark: report, do not stop
   // Courant number `co` of the free stream in the smallest cell, or at the lid speed.
@@ -182,10 +187,12 @@ int main(int argc, char** argv) {
   const std::string pressure = fv::to_string(*fv::Pimple(mesh, s).settings().pressure_solver);
   std::printf(
       "%s%s n=%d cells=%d steps=%d (1 + %d timed) outer=%d correctors=%d pressure=%s momentum=%s "
-      "time=%s convection=%s dt=%.3g\n",
+      "time=%s convection=%s dt=%.3g tolerance p %.3g U %.3g (%s)\n",
       hull ? ("hull-" + o.preset).c_str() : "cavity", hull ? "" : (o.two_d ? "2d" : "3d"),
       hull ? 0 : o.n, mesh.cells(), o.steps, o.steps - 1, o.outer, o.correctors, pressure.c_str(),
-      fv::to_string(s.momentum_solver), o.time.c_str(), o.convection.c_str(), s.dt);
+      fv::to_string(s.momentum_solver), o.time.c_str(), o.convection.c_str(), s.dt, s.tolerance,
+      s.momentum_tolerance > 0 ? s.momentum_tolerance : s.tolerance,
+      fv::to_string(s.residual_norm));
   std::vector<Result> results;
   for (int r = 0; r < o.repeat; ++r) {
     for (const int t : threads) {

@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 # Peer comparison: OpenFOAM v1912 (Debian package openfoam) and auvloop's bench_cfd on the same 3D
 # lid-driven cavity (unit cube, lid 1 m/s, nu = 0.01, N^3 uniform cells, dt = 1 / N for Courant 1
-# at the lid, 2 pressure correctors, p to 1e-6). Every figure is seconds per time step from the
+# at the lid, 2 pressure correctors, p to 1e-6 and U to 1e-5). Every figure is seconds per time step from the
 # second step on (start-up and the first step excluded: icoFoam's and pimpleFoam's from the
 # differences of their ExecutionTime lines, auvloop's solver time as bench_cfd reports it), and
 # each is printed as a ratio to icoFoam with GAMG on 1 process, measured first in the same run
@@ -20,9 +20,10 @@
 # orthogonal Laplacians, PISO with 2 correctors (one outer iteration), p to 1e-6 with relTol 0
 # (pFinal too), DIC-preconditioned CG against cg-dic and each code's own multigrid (GAMG, cg-amg)
 # against each other; the parallel pairs are OpenFOAM on 2 MPI processes against auvloop on 2
-# threads of one process. Differences: OpenFOAM's p tolerance is on its normalised residual,
-# auvloop's on |r| / |b|; U by OpenFOAM's symmetric Gauss-Seidel smoothSolver to 1e-5, auvloop's
-# by its own momentum solver (bench_cfd's header line, printed below, names it); pimpleFoam adds
+# threads of one process. Both codes stop their solvers on OpenFOAM's normalised residual (auvloop's
+# --residual-norm normalised), p at 1e-6 and U at 1e-5. Differences: U by OpenFOAM's symmetric
+# Gauss-Seidel smoothSolver, auvloop's by its own momentum solver (bench_cfd's header line,
+# printed below, names it); pimpleFoam adds
 # the explicit div(nuEff dev2(T(grad U))) term of its laminar (Stokes) model and the PIMPLE
 # bookkeeping around the same PISO loop; ExecutionTime is the CPU time of the (master) process in
 # 0.01 s ticks (ClockTime, its wall clock, counts whole seconds), so it leaves out the time spent
@@ -166,7 +167,8 @@ ours_step() {
   local log="$case/log.auv.$1.$2"
   [[ -x $build/bench/bench_cfd ]] || { echo "$build/bench/bench_cfd not found" >&2; return 1; }
   "$build/bench/bench_cfd" --n "$n" --steps "$steps" --threads "$2" --time euler \
-    --convection linear-upwind --pressure "$1" > "$log" 2>&1 || { tail -n 20 "$log" >&2; return 1; }
+    --convection linear-upwind --pressure "$1" --residual-norm normalised --tolerance 1e-6 \
+    --momentum-tolerance 1e-5 > "$log" 2>&1 || { tail -n 20 "$log" >&2; return 1; }
   awk '{ for (i = 1; i < NF; ++i) {
            if ($i ~ /^cells=/) { cells = substr($i, 7) }
            if ($i == "us/cell/step") us = $(i + 1)
@@ -205,7 +207,7 @@ measure() {
 
 echo "cavity ${n}^3, $steps steps (s/step from the 2nd on), dt $dt, Euler + linear upwind"
 # shellcheck disable=SC2016  # expanded by the shell that sourced OpenFOAM's bashrc
-echo "(least-squares grad U), PISO 2 correctors, p to 1e-6; OpenFOAM $(foam 'echo $WM_PROJECT_VERSION')"
+echo "(least-squares grad U), PISO 2 correctors, p to 1e-6, U to 1e-5 (normalised residuals); OpenFOAM $(foam 'echo $WM_PROJECT_VERSION')"
 [[ $parallel == 1 ]] && echo "OpenFOAM on 2 processes: decomposePar, method $decomposition;" \
   "mpirun $mpirun_flags -np 2 APP -parallel"
 echo "load average at start: $(uptime | sed 's/.*load average: //')"

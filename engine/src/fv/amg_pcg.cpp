@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
 #include <Eigen/Dense>
 
 #include "krylov.hpp"
@@ -159,9 +160,10 @@ struct Level {
   const BlockCsr* A = nullptr;         // own, or the caller's finest matrix
   Restriction to_coarse;               // empty on the coarsest level
   std::vector<double> x, b, scratch;   // the cycle's iterate and right-hand side, sweep scratch
+  std::vector<double> r;               // the cycle's residual after its first sweep
   std::vector<double> r1, c1, v1, v2;  // the K-cycle's work on this level
   void allocate(int n) {
-    for (auto* v : {&x, &b, &scratch, &r1, &c1, &v1, &v2})
+    for (auto* v : {&x, &b, &scratch, &r, &r1, &c1, &v1, &v2})
       v->assign(static_cast<std::size_t>(n), 0.0);
   }
 };
@@ -229,20 +231,22 @@ struct AmgPcg::Hierarchy {
     }
     Level& C = levels[l + 1];
     const Restriction& R = L.to_coarse;
+    A.sweep<true>(b, x, false, true, L.scratch);  // from x = 0
+    // The restricted residual: the fine residual in one pass in row order (the matrix streams
+    // from memory), then summed over each aggregate's members (a gather of one vector).
     parallel_for(
-        A.rows(), [&](int i) { x[static_cast<std::size_t>(i)] = 0; }, kVectorGrain);
-    A.sweep<true>(b, x, false, true, L.scratch);
+        A.rows(), [&](int i) { L.r[static_cast<std::size_t>(i)] = A.row_residual<true>(i, b, x); },
+        kRowGrain);
     parallel_for(
         C.A->rows(),
-        [&](int I) {  // restricted residual
+        [&](int I) {
           const auto Is = static_cast<std::size_t>(I);
           double s = 0;
-          for (int m = R.member_start[Is]; m < R.member_start[Is + 1]; ++m) {
-            s += A.row_residual<true>(R.member[static_cast<std::size_t>(m)], b, x);
-          }
+          for (int m = R.member_start[Is]; m < R.member_start[Is + 1]; ++m)
+            s += L.r[static_cast<std::size_t>(R.member[static_cast<std::size_t>(m)])];
           C.b[Is] = s;
         },
-        kRowGrain);
+        kVectorGrain);
     if (l + 2 == levels.size()) {
       cycle(l + 1, C.b, C.x);
     } else {
@@ -319,7 +323,7 @@ int AmgPcg::cells(int level) const {
 }
 
 SolveStats AmgPcg::solve(const BlockCsr& A, bool changed, std::span<const double> b,
-                         std::span<double> x, double tolerance, int max_iterations) {
+                         std::span<double> x, const Tolerance& tolerance, int max_iterations) {
   if (!h_) {  // aggregates from the first matrix, kept for the grid's lifetime
     h_ = std::make_unique<Hierarchy>(A);
     changed = true;
@@ -355,7 +359,7 @@ SolveStats AmgPcg::solve(const BlockCsr& A, bool changed, std::span<const double
     rnorm = std::sqrt(r_squared);
     stats.iterations = it;
     stats.final_residual = r_l1 / norm;
-    if (rnorm <= tolerance * bnorm) return stats;
+    if (tolerance.met(rnorm, bnorm, stats.final_residual)) return stats;
     if (!std::isfinite(rnorm)) break;
     H.cycle(0, H.r, H.z);
     const auto [rz_new, zq] = dot2(H.z, H.r, H.q);
@@ -366,8 +370,11 @@ SolveStats AmgPcg::solve(const BlockCsr& A, bool changed, std::span<const double
       H.p[is] = H.z[is] + beta * H.p[is];
     });
   }
-  throw std::runtime_error("AMG-CG did not converge in " + std::to_string(max_iterations) +
-                           " iterations: relative residual " + std::to_string(rnorm / bnorm));
+  throw std::runtime_error(fmt::format(
+      "AMG-CG did not converge in {} iterations: relative residual {:.3g}, normalised {:.3g} ({} "
+      "tolerance {:.3g})",
+      max_iterations, rnorm / bnorm, stats.final_residual, to_string(tolerance.norm),
+      tolerance.value));
 }
 
 }  // namespace auvloop::engine::fv

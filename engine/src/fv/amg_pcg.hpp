@@ -47,9 +47,9 @@ class AmgPcg {
   // Solves A x = b for a symmetric positive definite A that keeps its single-precision copy
   // (BlockCsr::keep_single); x holds the initial guess. The pattern of A must be that of the
   // first call; `changed`: its coefficients differ from the last call's.
-  // Stops at |b - A x| <= tolerance |b|; throws std::runtime_error after max_iterations.
+  // Stops when `tolerance` is met; throws std::runtime_error after max_iterations.
   SolveStats solve(const BlockCsr& A, bool changed, std::span<const double> b, std::span<double> x,
-                   double tolerance, int max_iterations);
+                   const Tolerance& tolerance, int max_iterations);
 
   [[nodiscard]] int levels() const;
   [[nodiscard]] int cells(int level) const;

@@ -35,18 +35,17 @@ std::array<double, 2> residual_norms(const BlockCsr& A, std::span<const double> 
 // then a backward one (a fixed linear operator: the same partition every time).
 void precondition_gs(const BlockCsr& A, std::span<const double> r, std::span<double> z,
                      std::span<double> scratch) {
-  parallel_for(A.rows(), [&](int i) { z[static_cast<std::size_t>(i)] = 0; });
-  A.sweep(r, z, false, true, scratch);
+  A.sweep(r, z, false, true, scratch);  // from z = 0
   A.sweep(r, z, true, false, scratch);
 }
 
 }  // namespace
 
 SolveStart start_solve(const BlockCsr& A, std::span<const double> b, std::span<const double> x,
-                       std::span<double> r) {
+                       std::span<double> r, double normalisation) {
   const auto res = A.residual(b, x, r);
   SolveStart s;
-  s.normalisation = res.normalisation + 1e-300;
+  s.normalisation = normalisation > 0 ? normalisation : res.normalisation + 1e-300;
   s.stats.initial_residual = s.stats.final_residual = res.l1 / s.normalisation;
   s.bnorm = std::max(std::sqrt(res.b_squared), 1e-300);
   s.rnorm = std::sqrt(res.l2_squared);
@@ -54,22 +53,25 @@ SolveStart start_solve(const BlockCsr& A, std::span<const double> b, std::span<c
 }
 
 namespace {
-[[noreturn]] void fail(const char* method, int iterations, double relative, double tolerance) {
+[[noreturn]] void fail(const char* method, int iterations, double relative, double normalised,
+                       const Tolerance& tolerance) {
   throw std::runtime_error(fmt::format(
-      "{} did not converge in {} iterations: relative residual {:.3g} (tolerance {:.3g})", method,
-      iterations, relative, tolerance));
+      "{} did not converge in {} iterations: relative residual {:.3g}, normalised {:.3g} "
+      "({} tolerance {:.3g})",
+      method, iterations, relative, normalised, to_string(tolerance.norm), tolerance.value));
 }
 }  // namespace
 
 SmootherResult gauss_seidel_solve(const BlockCsr& A, std::span<const double> b, std::span<double> x,
-                                  double tolerance, int max_sweeps, KrylovWork& work) {
+                                  const Tolerance& tolerance, int max_sweeps, KrylovWork& work) {
   work.resize(A.rows());
   const auto start = start_solve(A, b, x, work.r);
   SmootherResult out;
   out.stats = start.stats;
+  out.normalisation = start.normalisation;
   const double norm = start.normalisation, bnorm = start.bnorm;
   double rnorm = start.rnorm;
-  for (int sweep = 1; rnorm > tolerance * bnorm; ++sweep) {
+  for (int sweep = 1; !tolerance.met(rnorm, bnorm, out.stats.final_residual); ++sweep) {
     if (sweep > max_sweeps) return out;
     A.sweep(b, x, false, false, work.s);
     A.sweep(b, x, true, false, work.s);
@@ -77,19 +79,20 @@ SmootherResult gauss_seidel_solve(const BlockCsr& A, std::span<const double> b, 
     rnorm = std::sqrt(l2);
     out.stats.iterations = sweep;
     out.stats.final_residual = l1 / norm;
-    if (!std::isfinite(rnorm)) fail("Gauss-Seidel", sweep, rnorm / bnorm, tolerance);
+    if (!std::isfinite(rnorm))
+      fail("Gauss-Seidel", sweep, rnorm / bnorm, out.stats.final_residual, tolerance);
   }
   out.converged = true;
   return out;
 }
 
 SolveStats bicgstab(const BlockCsr& A, std::span<const double> b, std::span<double> x,
-                    double tolerance, int max_iterations, KrylovWork& w,
-                    Preconditioner preconditioner) {
+                    const Tolerance& tolerance, int max_iterations, KrylovWork& w,
+                    Preconditioner preconditioner, double normalisation) {
   const int n = A.rows();
   w.resize(n);
   const auto& inv = A.inverse_diag();
-  const auto start = start_solve(A, b, x, w.r);
+  const auto start = start_solve(A, b, x, w.r, normalisation);
   SolveStats stats = start.stats;
   const double norm = start.normalisation, bnorm = start.bnorm;
   double rnorm = start.rnorm;
@@ -145,13 +148,13 @@ SolveStats bicgstab(const BlockCsr& A, std::span<const double> b, std::span<doub
     stats.iterations = it;
     stats.final_residual = r_l1 / norm;
     if (!std::isfinite(rnorm)) break;
-    if (rnorm <= tolerance * bnorm || omega == 0) {
+    if (tolerance.met(rnorm, bnorm, stats.final_residual) || omega == 0) {
       // The recursive residual drifts from the true one (and can reach zero in a breakdown):
       // converged only if the true residual agrees; otherwise restart from it.
       const auto true_res = A.residual(b, x, w.r);
       rnorm = std::sqrt(true_res.l2_squared);
       stats.final_residual = true_res.l1 / norm;
-      if (rnorm <= tolerance * bnorm) return stats;
+      if (tolerance.met(rnorm, bnorm, stats.final_residual)) return stats;
       if (!(rnorm > 0) || !std::isfinite(rnorm)) break;
       each([&](int i) {
         const auto k = static_cast<std::size_t>(i);
@@ -162,11 +165,11 @@ SolveStats bicgstab(const BlockCsr& A, std::span<const double> b, std::span<doub
       rho = alpha = omega = 1;
     }
   }
-  fail("BiCGSTAB", stats.iterations, rnorm / bnorm, tolerance);
+  fail("BiCGSTAB", stats.iterations, rnorm / bnorm, stats.final_residual, tolerance);
 }
 
 SolveStats jacobi_cg(const BlockCsr& A, std::span<const double> b, std::span<double> x,
-                     double tolerance, int max_iterations, KrylovWork& w) {
+                     const Tolerance& tolerance, int max_iterations, KrylovWork& w) {
   const int n = A.rows();
   w.resize(n);
   const auto& inv = A.inverse_diag();
@@ -199,7 +202,7 @@ SolveStats jacobi_cg(const BlockCsr& A, std::span<const double> b, std::span<dou
     rnorm = std::sqrt(r_squared);
     stats.iterations = it;
     stats.final_residual = r_l1 / norm;
-    if (rnorm <= tolerance * bnorm) return stats;
+    if (tolerance.met(rnorm, bnorm, stats.final_residual)) return stats;
     if (!std::isfinite(rnorm)) break;
     const double beta = rz_new / rz;
     rz = rz_new;
@@ -208,7 +211,7 @@ SolveStats jacobi_cg(const BlockCsr& A, std::span<const double> b, std::span<dou
       w.p[k] = w.z[k] + beta * w.p[k];
     });
   }
-  fail("Jacobi-CG", stats.iterations, rnorm / bnorm, tolerance);
+  fail("Jacobi-CG", stats.iterations, rnorm / bnorm, stats.final_residual, tolerance);
 }
 
 }  // namespace auvloop::engine::fv

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Single-level iterative solvers on a BlockCsr, private to engine/src; every vector operation and
 // product is parallel with fixed-block sums (parallel.hpp), so the iterates do not depend on the
-// number of threads. All stop at |b - A x| <= tolerance |b| (2-norms), report OpenFOAM's
-// normalised residuals (linear_solver.hpp) at the start and end, and throw std::runtime_error
+// number of threads. All stop when the Tolerance (linear_solver.hpp) is met, report OpenFOAM's
+// normalised residuals at the start and end, and throw std::runtime_error
 // when the iteration limit is reached or the residual stops being finite.
 //
 //   gauss_seidel_solve  symmetric hybrid Gauss-Seidel sweeps (a forward sweep, then a backward one;
@@ -33,27 +33,31 @@ struct KrylovWork {
 };
 
 // The start of an iterative solve: r = b - A x, the normalised residual (initial and, so far,
-// final), OpenFOAM's normalisation for the later ones, |b| and |r|. converged(): |r| <= tol |b|.
+// final), OpenFOAM's normalisation for the later ones (`normalisation` if > 0: a solve that goes
+// on from another method's, whose normalisation it keeps), |b| and |r|.
 struct SolveStart {
   SolveStats stats;
   double normalisation = 0, bnorm = 0, rnorm = 0;
-  [[nodiscard]] bool converged(double tolerance) const { return rnorm <= tolerance * bnorm; }
+  [[nodiscard]] bool converged(const Tolerance& tolerance) const {
+    return tolerance.met(rnorm, bnorm, stats.initial_residual);
+  }
 };
 SolveStart start_solve(const BlockCsr& A, std::span<const double> b, std::span<const double> x,
-                       std::span<double> r);
+                       std::span<double> r, double normalisation = 0);
 
 struct SmootherResult {
   SolveStats stats;
   bool converged = false;
+  double normalisation = 0;  // of its residuals, for a method that goes on from its x
 };
 
 SmootherResult gauss_seidel_solve(const BlockCsr& A, std::span<const double> b, std::span<double> x,
-                                  double tolerance, int max_sweeps, KrylovWork& work);
+                                  const Tolerance& tolerance, int max_sweeps, KrylovWork& work);
 enum class Preconditioner { jacobi, gauss_seidel };
 SolveStats bicgstab(const BlockCsr& A, std::span<const double> b, std::span<double> x,
-                    double tolerance, int max_iterations, KrylovWork& work,
-                    Preconditioner preconditioner);
+                    const Tolerance& tolerance, int max_iterations, KrylovWork& work,
+                    Preconditioner preconditioner, double normalisation = 0);
 SolveStats jacobi_cg(const BlockCsr& A, std::span<const double> b, std::span<double> x,
-                     double tolerance, int max_iterations, KrylovWork& work);
+                     const Tolerance& tolerance, int max_iterations, KrylovWork& work);
 
 }  // namespace auvloop::engine::fv

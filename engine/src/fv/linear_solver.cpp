@@ -62,6 +62,16 @@ AsymmetricMethod asymmetric_method_from_string(const std::string& s) {
                               "' (gauss-seidel, bicgstab, bicgstab-gs, bicgstab-ilut)");
 }
 
+const char* to_string(ResidualNorm n) {
+  return n == ResidualNorm::relative ? "relative" : "normalised";
+}
+
+ResidualNorm residual_norm_from_string(const std::string& s) {
+  for (auto n : {ResidualNorm::relative, ResidualNorm::normalised})
+    if (s == to_string(n)) return n;
+  throw std::invalid_argument("unknown residual norm '" + s + "' (relative, normalised)");
+}
+
 SymmetricMethod symmetric_method_from_string(const std::string& s) {
   for (auto m : {SymmetricMethod::cholmod, SymmetricMethod::cholmod_pcg,
                  SymmetricMethod::cg_incomplete_cholesky, SymmetricMethod::cg_dic,
@@ -154,7 +164,7 @@ struct EigenCopy {
 
 struct LinearSolver::Impl {
   const Mesh& mesh;
-  double tolerance;
+  Tolerance tolerance;
   // The iterative methods' copy of the matrix, shared by every equation solved here (momentum
   // and pressure have the same pattern); once cg-amg has run it keeps its single-precision copy
   // too, refreshed by every load that changes a coefficient (one more pass over the entries).
@@ -166,7 +176,7 @@ struct LinearSolver::Impl {
   std::unique_ptr<AmgPcg> amg;       // built on the first cg-amg solve
   std::unique_ptr<EigenCopy> eigen;  // built on the first solve that needs it
 
-  Impl(const Mesh& m, double tol)
+  Impl(const Mesh& m, Tolerance tol)
       : mesh(m), tolerance(tol), b(static_cast<std::size_t>(m.cells())) {
     std::vector<int> row_start(static_cast<std::size_t>(mesh.cells()) + 1, 0), columns, tags;
     for (int c = 0; c < mesh.cells(); ++c) {
@@ -210,7 +220,7 @@ struct LinearSolver::Impl {
   }
 
   EigenCopy& eigen_copy(const Matrix& m, double sign) {
-    if (!eigen) eigen = std::make_unique<EigenCopy>(mesh, tolerance);
+    if (!eigen) eigen = std::make_unique<EigenCopy>(mesh, tolerance.value);
     eigen->load(m, sign);
     return *eigen;
   }
@@ -224,7 +234,7 @@ struct LinearSolver::Impl {
   }
 };
 
-LinearSolver::LinearSolver(const Mesh& mesh, double tolerance)
+LinearSolver::LinearSolver(const Mesh& mesh, Tolerance tolerance)
     : impl_(std::make_unique<Impl>(mesh, tolerance)) {}
 LinearSolver::~LinearSolver() = default;
 
@@ -295,9 +305,9 @@ SolveStats LinearSolver::solve_symmetric(const Matrix& m, std::span<double> x,
     Eigen::ConjugateGradient<Sparse, Eigen::Lower | Eigen::Upper,
                              Eigen::IncompleteCholesky<double, Eigen::Lower>>
         cg;
-    stats.iterations = iterate(cg, E.A, I.b, x, I.tolerance);
+    stats.iterations = iterate(cg, E.A, I.b, x, I.tolerance.value);
   } else {  // cg_dic
-    stats.iterations = dic_pcg(I.mesh, -m, x, I.tolerance, 20000);
+    stats.iterations = dic_pcg(I.mesh, -m, x, I.tolerance.value, 20000);
   }
   I.residuals(x, stats, false);
   return stats;
@@ -306,13 +316,14 @@ SolveStats LinearSolver::solve_symmetric(const Matrix& m, std::span<double> x,
 SolveStats LinearSolver::solve_asymmetric(const Matrix& m, std::span<double> x,
                                           AsymmetricMethod method, double tolerance) {
   auto& I = *impl_;
-  const double tol = tolerance > 0 ? tolerance : I.tolerance;
+  const Tolerance tol = tolerance > 0 ? Tolerance(tolerance, I.tolerance.norm) : I.tolerance;
   I.load(m, 1.0);
   if (method == AsymmetricMethod::gauss_seidel) {
     constexpr int kSweepPairs = 20;
     auto gs = gauss_seidel_solve(I.csr, I.b, x, tol, kSweepPairs, I.work);
     if (gs.converged) return gs.stats;
-    const SolveStats more = bicgstab(I.csr, I.b, x, tol, 5000, I.work, Preconditioner::jacobi);
+    const SolveStats more =
+        bicgstab(I.csr, I.b, x, tol, 5000, I.work, Preconditioner::jacobi, gs.normalisation);
     gs.stats.iterations += more.iterations;
     gs.stats.final_residual = more.final_residual;
     return gs.stats;
@@ -326,7 +337,7 @@ SolveStats LinearSolver::solve_asymmetric(const Matrix& m, std::span<double> x,
   I.residuals(x, stats, true);
   auto& E = I.eigen_copy(m, 1.0);
   Eigen::BiCGSTAB<Sparse, Eigen::IncompleteLUT<double>> s;
-  stats.iterations = iterate(s, E.A, I.b, x, tol);
+  stats.iterations = iterate(s, E.A, I.b, x, tol.value);
   I.residuals(x, stats, false);
   return stats;
 }

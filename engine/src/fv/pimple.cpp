@@ -48,7 +48,7 @@ Pimple::Pimple(const Mesh& mesh, PimpleSettings settings)
       phi(static_cast<std::size_t>(mesh.faces()), 0.0),
       mesh_(mesh),
       settings_(settings),
-      solver_(mesh, settings.tolerance) {
+      solver_(mesh, Tolerance(settings.tolerance, settings.residual_norm)) {
   // A direction normal to an empty patch carries no velocity component (2D grids).
   for (const auto& patch : mesh.grid().patches) {
     if (patch.type != mesher::PatchType::empty || patch.size == 0) continue;

@@ -168,15 +168,17 @@ void BlockCsr::sweep(std::span<const double> b, std::span<double> x, bool backwa
     const auto relax = [&](int i) {
       const auto s = static_cast<std::size_t>(i);
       const int begin = row_begin(i), mid = mid_[s], split = split_[s];
-      double older = 0, recent = 0;
+      double older = 0, recent = 0;  // from x = 0 the older terms are all zero
       if (backward) {
-        for (int k = begin; k < mid; ++k)
-          older += coefficient<Single>(k) * x[static_cast<std::size_t>(column(k))];
+        if (!zero_x)
+          for (int k = begin; k < mid; ++k)
+            older += coefficient<Single>(k) * x[static_cast<std::size_t>(column(k))];
         for (int k = split; k-- > mid;)
           recent += coefficient<Single>(k) * x[static_cast<std::size_t>(column(k))];
       } else {
-        for (int k = mid; k < split; ++k)
-          older += coefficient<Single>(k) * x[static_cast<std::size_t>(column(k))];
+        if (!zero_x)
+          for (int k = mid; k < split; ++k)
+            older += coefficient<Single>(k) * x[static_cast<std::size_t>(column(k))];
         for (int k = begin; k < mid; ++k)
           recent += coefficient<Single>(k) * x[static_cast<std::size_t>(column(k))];
       }

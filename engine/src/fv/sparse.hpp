@@ -93,8 +93,9 @@ class BlockCsr {
   Residual residual(std::span<const double> b, std::span<const double> x,
                     std::span<double> r) const;
 
-  // One hybrid Gauss-Seidel sweep on A x = b (above). `zero_x`: x is zero on entry (the inter-block
-  // terms vanish and x is not read). `scratch`: n values.
+  // One hybrid Gauss-Seidel sweep on A x = b (above). `zero_x`: the sweep starts from x = 0
+  // whatever x holds on entry (the inter-block and not-yet-updated terms vanish, x is only
+  // written before it is read). `scratch`: n values.
   template <bool Single = false>
   void sweep(std::span<const double> b, std::span<double> x, bool backward, bool zero_x,
              std::span<double> scratch) const;

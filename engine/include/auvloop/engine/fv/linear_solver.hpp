@@ -42,6 +42,28 @@ SymmetricMethod symmetric_method_from_string(const std::string& s);
 const char* to_string(AsymmetricMethod m);
 AsymmetricMethod asymmetric_method_from_string(const std::string& s);
 
+// What an iterative solve's tolerance bounds.
+enum class ResidualNorm {
+  relative,    // |b - A x| <= tolerance |b| (2-norms)
+  normalised,  // OpenFOAM's normalised residual (SolveStats) <= tolerance, as its solvers'
+               // `tolerance` keyword: the like-for-like setting against OpenFOAM
+};
+const char* to_string(ResidualNorm n);
+ResidualNorm residual_norm_from_string(const std::string& s);
+
+// When an iterative solve has converged. The engine's own methods (cg-amg, cg-jacobi, BiCGSTAB
+// and Gauss-Seidel) honour `norm`; Eigen's and CHOLMOD's take `value` as a relative tolerance.
+struct Tolerance {
+  double value = 1e-8;
+  ResidualNorm norm = ResidualNorm::relative;
+  Tolerance() = default;
+  Tolerance(double v, ResidualNorm n = ResidualNorm::relative) : value(v), norm(n) {}  // NOLINT
+  // rnorm, bnorm: 2-norms of b - A x and of b; normalised: OpenFOAM's normalised residual.
+  [[nodiscard]] bool met(double rnorm, double bnorm, double normalised) const {
+    return norm == ResidualNorm::relative ? rnorm <= value * bnorm : normalised <= value;
+  }
+};
+
 struct SolveStats {
   int iterations = 0;  // Krylov iterations, or Gauss-Seidel sweep pairs
   // OpenFOAM's normalised residual sum |b - A x| / sum (|A x - A xbar| + |b - A xbar|), xbar the
@@ -53,14 +75,14 @@ struct SolveStats {
 
 class LinearSolver {
  public:
-  LinearSolver(const Mesh& mesh, double tolerance);
+  LinearSolver(const Mesh& mesh, Tolerance tolerance);
   ~LinearSolver();
   LinearSolver(const LinearSolver&) = delete;
   LinearSolver& operator=(const LinearSolver&) = delete;
 
   // Solves A x = source for a symmetric matrix (upper == lower); x holds the initial guess.
   SolveStats solve_symmetric(const Matrix& m, std::span<double> x, SymmetricMethod method);
-  // `tolerance` > 0 replaces the solver's own for this solve.
+  // `tolerance` > 0 replaces the solver's own value for this solve (in the solver's norm).
   SolveStats solve_asymmetric(const Matrix& m, std::span<double> x, AsymmetricMethod method,
                               double tolerance = 0);
 

@@ -43,9 +43,12 @@ struct PimpleSettings {
   // "Performance": on the 64^3 cavity 29 iterations per step against 44 symmetric Gauss-Seidel
   // sweep pairs, 0.61 against 0.71 s per step on one thread).
   AsymmetricMethod momentum_solver = AsymmetricMethod::bicgstab_jacobi;
-  double tolerance = 1e-8;        // relative tolerance of the iterative linear solvers
+  double tolerance = 1e-8;        // tolerance of the iterative linear solvers, in...
   double momentum_tolerance = 0;  // the momentum predictor's, if > 0 (else `tolerance`)
-  double max_courant = 50;        // a step beyond this stops the run (divergence)
+  // ...this norm (linear_solver.hpp); `normalised` with 1e-6 / 1e-5 is OpenFOAM's p / U setting
+  // in its tutorials and in bench/openfoam_cavity.sh.
+  ResidualNorm residual_norm = ResidualNorm::relative;
+  double max_courant = 50;  // a step beyond this stops the run (divergence)
   // On divergence the last good fields are written here (created if missing) as
   // last-good.vtu / .pvd (ParaView) and last-good.checkpoint (restart); empty: kept in memory.
   std::filesystem::path divergence_directory;
