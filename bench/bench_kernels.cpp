@@ -7,7 +7,12 @@
 // vectors (main memory), for each thread count given. Bytes are those each kernel must move at
 // least (every array it reads or writes once; x's gathers counted once, as the neighbours' values
 // are in cache): the figure is the rate at which the kernel moves them. Not a test: nothing is
-// asserted.
+// asserted. Last, the cost of one parallel region (a fork-join of the engine's loops): 2,000
+// regions of 1024 trivial updates each, back to back, and with 5 to 500 us of busy work on the
+// calling thread alone before each (the pattern of the small multigrid levels, which run serially
+// between parallel loops), in microseconds per region beyond that work. On one thread the loops
+// run serially, so the difference to the one-thread line is what a region costs; the longer the
+// serial stretch, the deeper TBB's idle worker has gone to sleep, and the dearer its wake-up.
 //   bench_kernels [--n N] [--repeat R] [--threads T[,T...]]
 #include <algorithm>
 #include <chrono>
@@ -123,6 +128,28 @@ int main(int argc, char** argv) {
     line("hybrid Gauss-Seidel sweep", sweep, sweep_bytes);
     line("hybrid Gauss-Seidel sweep, single", sweep_single, single_sweep_bytes);
     line("residual r = b - A x and its norms", residual, residual_bytes);
+    constexpr int kRegions = 2000;
+    const auto regions = [&](double serial_seconds) {
+      return best_seconds(3,
+                          [&] {
+                            for (int k = 0; k < kRegions; ++k) {
+                              if (serial_seconds > 0) {  // busy work on the calling thread alone
+                                const auto until = std::chrono::steady_clock::now() +
+                                                   std::chrono::duration<double>(serial_seconds);
+                                while (std::chrono::steady_clock::now() < until) {
+                                }
+                              }
+                              fv::parallel_for(
+                                  1024, [&](int i) { y[static_cast<std::size_t>(i)] += 1.0; }, 512);
+                            }
+                          }) /
+             kRegions;
+    };
+    std::printf("%-8d %-40s %10.2f us per region\n", t, "fork-join, back to back",
+                1e6 * regions(0));
+    for (const double us : {5.0, 20.0, 100.0, 500.0})
+      std::printf("%-8d fork-join after %3.0f us of serial work %11.2f us per region, beyond it\n",
+                  t, us, 1e6 * regions(us * 1e-6) - us);
     if (comma == std::string::npos) break;
     pos = comma + 1;
   }

@@ -57,7 +57,8 @@ fv::Matrix transport(const fv::Mesh& mesh, bool symmetric) {
   fv::ScalarField phi(mesh, "phi");
   for (auto& bc : phi.bcs) bc.kind = fv::BcKind::zero_gradient;
   const std::vector<double> old(static_cast<std::size_t>(mesh.cells()), 0.0);
-  fv::Matrix m = fv::ddt(mesh, fv::TimeScheme{0.05, false}, old, old) - fv::laplacian(mesh, 1.0, phi);
+  fv::Matrix m =
+      fv::ddt(mesh, fv::TimeScheme{0.05, false}, old, old) - fv::laplacian(mesh, 1.0, phi);
   if (!symmetric)
     for (auto& a : m.upper) a *= 0.7;
   for (int c = 0; c < mesh.cells(); ++c) {
