@@ -73,6 +73,10 @@ Mesh::Mesh(const mesher::Grid& source)
   }
   gradient_ = std::make_unique<LeastSquaresGradient>(grid, geo_, d_);
   face_blocks_ = FaceBlocks(grid);
+  for (int f = internal_faces(); f < faces(); ++f) boundary_cells_.push_back(owner(f));
+  std::sort(boundary_cells_.begin(), boundary_cells_.end());
+  boundary_cells_.erase(std::unique(boundary_cells_.begin(), boundary_cells_.end()),
+                        boundary_cells_.end());
 }
 
 // A power of two of blocks (two threads share them evenly; three within a block), at most 16 and

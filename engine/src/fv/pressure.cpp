@@ -37,7 +37,9 @@ bool free_pressure_face(const Mesh& mesh, const ScalarField& p, int f) {
 }
 
 void extrapolate_zero_gradient(const Mesh& mesh, ScalarField& p) {
-  parallel_for(mesh.cells(), [&](int c) {  // each cell writes its own boundary faces only
+  const auto cells = mesh.boundary_cells();
+  parallel_for(static_cast<int>(cells.size()), [&](int i) {  // a cell writes its own faces only
+    const int c = cells[static_cast<std::size_t>(i)];
     const auto cell_faces = mesh.cell_faces(c);
     bool any = false;
     for (int f : cell_faces) any = any || free_pressure_face(mesh, p, f);

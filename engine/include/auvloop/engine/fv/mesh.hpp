@@ -111,6 +111,8 @@ class Mesh {
     return std::span<const int>(cell_face_list_).subspan(b, e - b);
   }
   const FaceBlocks& face_blocks() const { return face_blocks_; }
+  // The cells with at least one boundary face (periodic pairs coupled: not those), ascending.
+  std::span<const int> boundary_cells() const { return boundary_cells_; }
   // Whether every face is orthogonal (|k| <= 1e-12 |S|): the non-orthogonal corrections, and the
   // gradients they need, are then skipped.
   bool orthogonal() const { return orthogonal_; }
@@ -133,6 +135,7 @@ class Mesh {
   std::vector<int> patch_of_;
   std::vector<int> cell_face_offsets_, cell_face_list_;
   FaceBlocks face_blocks_;
+  std::vector<int> boundary_cells_;
   double total_volume_ = 0;
   bool skewed_ = false, orthogonal_ = true;
   std::unique_ptr<LeastSquaresGradient> gradient_;
