@@ -30,7 +30,7 @@ if [ $sanitizers -eq 1 ]; then
   # information: the instrumented build is the longest step of CI.
   scripts/build.sh build/sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DAUVLOOP_WERROR=ON -DAUVLOOP_BUILD_TESTS=ON \
     -DAUVLOOP_BUILD_BENCH=OFF -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" \
-    -DAUVLOOP_SANITIZE=ON
+    -DAUVLOOP_SANITIZE=ON -DAUVLOOP_TEST_LABELS=unit
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
     ctest --test-dir build/sanitize --output-on-failure -j "$jobs" -L unit
 fi
