@@ -1,0 +1,16 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The walls of a grid as triangles, for distance queries (the turbulence model's wall distance).
+#pragma once
+
+#include <vector>
+
+#include "auvloop/geometry/triangle_distance.hpp"
+#include "auvloop/mesher/grid.hpp"
+
+namespace auvloop::mesher {
+
+// The faces of the grid's wall patches as triangles about each face's point average (the
+// decomposition compute_geometry uses), in the body frame (the grid's placement applied).
+std::vector<geometry::Triangle> wall_triangles(const Grid& g);
+
+}  // namespace auvloop::mesher
