@@ -30,10 +30,10 @@ mesher::BoxPatches patches_with_walls(std::initializer_list<int> wall_sides,
 
 TEST(WallDistance, BetweenTwoPlaneWallsItIsTheDistanceToTheNearerOne) {
   const double h = 0.2;
-  const auto grid = mesher::cartesian_box(
-      mesher::graded_nodes(0, 1, 12, 1.3), mesher::graded_nodes(0, h, 16, 4.0),
-      mesher::graded_nodes(0, 0.1, 3), patches_with_walls({2, 3}, mesher::PatchType::inlet),
-      "channel");
+  const auto grid =
+      mesher::cartesian_box(mesher::graded_nodes(0, 1, 12, 1.3),
+                            mesher::graded_nodes(0, h, 16, 4.0), mesher::graded_nodes(0, 0.1, 3),
+                            patches_with_walls({2, 3}, mesher::PatchType::inlet), "channel");
   const engine::fv::Mesh mesh(grid);
   const mesher::Grid* grids[] = {&grid};
   const auto walls = turb::wall_surface(grids);
@@ -48,12 +48,14 @@ TEST(WallDistance, BetweenTwoPlaneWallsItIsTheDistanceToTheNearerOne) {
 TEST(WallDistance, AComponentGridSeesTheWallsOfTheOthersThroughItsPlacement) {
   // Grid a: a slab with its wall at y = 0 (wide in x and z); grid b: a cube without walls, turned
   // by 30 deg about z and moved to (0.5, 0.4, 0) in the body frame.
-  const auto a = mesher::cartesian_box(
-      mesher::graded_nodes(0, 1, 8), mesher::graded_nodes(0, 1, 8), mesher::graded_nodes(-0.5, 0.5, 4),
-      patches_with_walls({2}, mesher::PatchType::symmetry), "slab");
-  auto b = mesher::cartesian_box(mesher::graded_nodes(-0.1, 0.1, 5), mesher::graded_nodes(-0.1, 0.1, 5),
-                                 mesher::graded_nodes(-0.1, 0.1, 5),
-                                 patches_with_walls({}, mesher::PatchType::overset), "cube");
+  const auto a =
+      mesher::cartesian_box(mesher::graded_nodes(0, 1, 8), mesher::graded_nodes(0, 1, 8),
+                            mesher::graded_nodes(-0.5, 0.5, 4),
+                            patches_with_walls({2}, mesher::PatchType::symmetry), "slab");
+  auto b =
+      mesher::cartesian_box(mesher::graded_nodes(-0.1, 0.1, 5), mesher::graded_nodes(-0.1, 0.1, 5),
+                            mesher::graded_nodes(-0.1, 0.1, 5),
+                            patches_with_walls({}, mesher::PatchType::overset), "cube");
   b.placement = Eigen::Translation3d(0.5, 0.4, 0) *
                 Eigen::AngleAxisd(std::numbers::pi / 6, Eigen::Vector3d::UnitZ());
   const mesher::Grid* grids[] = {&a, &b};
