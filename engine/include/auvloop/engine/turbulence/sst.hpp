@@ -23,10 +23,10 @@ namespace auvloop::engine::turbulence {
 
 struct SstConstants {
   double beta_star = 0.09, a1 = 0.31, kappa = 0.41;
-  double sigma_k1 = 0.85, sigma_w1 = 0.5, beta1 = 0.075;  // set 1: inner (k-omega)
+  double sigma_k1 = 0.85, sigma_w1 = 0.5, beta1 = 0.075;    // set 1: inner (k-omega)
   double sigma_k2 = 1.0, sigma_w2 = 0.856, beta2 = 0.0828;  // set 2: outer (k-epsilon)
-  double production_limit = 10;  // P_k <= production_limit beta* k omega
-  double cd_floor = 1e-10;       // 1/s^2, the lower bound of CD_kw
+  double production_limit = 10;                             // P_k <= production_limit beta* k omega
+  double cd_floor = 1e-10;                                  // 1/s^2, the lower bound of CD_kw
 
   [[nodiscard]] double gamma1() const {
     return beta1 / beta_star - sigma_w1 * kappa * kappa / std::sqrt(beta_star);
@@ -47,13 +47,11 @@ inline SstBlend blend(const SstConstants& c, double F1) {
 }
 
 // CD_kw (1/s^2) from grad(k) . grad(omega) (1/s^3).
-inline double cross_diffusion(const SstConstants& c, double grad_k_dot_grad_omega,
-                              double omega) {
+inline double cross_diffusion(const SstConstants& c, double grad_k_dot_grad_omega, double omega) {
   return std::max(2 * c.sigma_w2 * grad_k_dot_grad_omega / omega, c.cd_floor);
 }
 
-inline double f1(const SstConstants& c, double k, double omega, double d, double nu,
-                 double cd_kw) {
+inline double f1(const SstConstants& c, double k, double omega, double d, double nu, double cd_kw) {
   const double a = std::max(std::sqrt(k) / (c.beta_star * omega * d), 500 * nu / (d * d * omega));
   const double arg1 = std::min(a, 4 * c.sigma_w2 * k / (cd_kw * d * d));
   return std::tanh(arg1 * arg1 * arg1 * arg1);
