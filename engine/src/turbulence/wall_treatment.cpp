@@ -1,0 +1,60 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The law of the wall and the first-cell omega: the algorithm is stated in
+// auvloop/engine/turbulence/wall_treatment.hpp.
+#include "auvloop/engine/turbulence/wall_treatment.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace auvloop::engine::turbulence {
+
+double LawOfTheWall::y_plus(double u) const {
+  const double ku = kappa * u;
+  return u + std::exp(-kappa * B) * (std::expm1(ku) - ku - ku * ku / 2 - ku * ku * ku / 6);
+}
+
+double LawOfTheWall::u_plus(double yp) const {
+  if (!(yp >= 0) || !std::isfinite(yp))
+    throw std::invalid_argument("law of the wall: y+ must be finite and >= 0, got " +
+                                std::to_string(yp));
+  // y_plus(u) is increasing and convex in u >= 0 with y_plus(u) >= u, so the root lies in
+  // [0, min(y+, 300)] (u+ of y+ = 1e50 is below 300): Newton's method kept inside the bracket
+  // (bisection when a step would leave it), from its upper end.
+  double lo = 0, hi = std::min(yp, 300.0), u = hi;
+  for (int it = 0; it < 200; ++it) {
+    const double ku = kappa * u;
+    const double f = y_plus(u) - yp;
+    (f > 0 ? hi : lo) = u;
+    const double df = 1 + std::exp(-kappa * B) * kappa * (std::expm1(ku) - ku - ku * ku / 2);
+    double next = u - f / df;
+    if (!(next >= lo && next <= hi)) next = 0.5 * (lo + hi);
+    const bool done = std::abs(next - u) <= 1e-15 * std::max(1.0, u);
+    u = next;
+    if (done) break;
+  }
+  return u;
+}
+
+double LawOfTheWall::friction_velocity(double U, double y, double nu) const {
+  if (!(y > 0) || !(nu > 0) || !(U >= 0) || !std::isfinite(U))
+    throw std::invalid_argument("friction velocity: need y > 0, nu > 0 and a finite U >= 0");
+  if (U == 0) return 0;
+  // U / u_tau = u+(y u_tau / nu): with g(u_tau) = u_tau u+(y u_tau / nu) increasing in u_tau,
+  // bisect on log u_tau between the sublayer and the log-layer bounds, then polish.
+  const auto g = [&](double ut) { return ut * u_plus(y * ut / nu) - U; };
+  double lo = 1e-12 * U, hi = 2 * std::max(std::sqrt(U * nu / y), U);  // g(lo) < 0 < g(hi)
+  for (int it = 0; it < 200 && hi - lo > 1e-15 * hi; ++it) {
+    const double mid = std::sqrt(lo * hi);
+    (g(mid) < 0 ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+double wall_omega(double y, double u_tau, double nu, double beta1, double beta_star, double kappa) {
+  const double vis = 6 * nu / (beta1 * y * y);
+  const double log = u_tau / (std::sqrt(beta_star) * kappa * y);
+  return std::sqrt(vis * vis + log * log);
+}
+
+}  // namespace auvloop::engine::turbulence

@@ -1,0 +1,62 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The wall treatment against the analytic limits of Spalding's law (u+ = y+ in the viscous
+// sublayer, with the formula's first neglected term as the bound; the log law ln(y+) / kappa + B
+// further out, with the bound from the formula's own expansion) and round trips: u+(y+(u)) = u,
+// and the friction velocity of a speed made from a known u_tau gives that u_tau back.
+#include <cmath>
+#include <stdexcept>
+
+#include <gtest/gtest.h>
+
+#include "auvloop/engine/turbulence/wall_treatment.hpp"
+
+using namespace auvloop::engine::turbulence;
+
+TEST(LawOfTheWall, InvertsSpaldingsFormulaToRoundOff) {
+  const LawOfTheWall law;
+  for (double u : {0.0, 0.01, 1.0, 5.0, 11.0, 20.0, 30.0, 60.0})
+    EXPECT_NEAR(law.u_plus(law.y_plus(u)), u, 1e-12 * std::max(1.0, u)) << "u+ " << u;
+  EXPECT_THROW((void)law.u_plus(-1.0), std::invalid_argument);
+  EXPECT_GT(law.u_plus(1e40), 200.0);  // far beyond any grid, still finite
+}
+
+TEST(LawOfTheWall, IsLinearInTheSublayerAndLogarithmicInTheLogLayer) {
+  const LawOfTheWall law;
+  for (double yp : {0.01, 0.1, 0.5, 1.0}) {
+    const double u = law.u_plus(yp);
+    // y+ - u+ = exp(-kappa B) (kappa u)^4 / 24 (1 + O(kappa u)): the first neglected term.
+    const double term = std::exp(-law.kappa * law.B) * std::pow(law.kappa * u, 4) / 24;
+    EXPECT_NEAR(yp - u, term, 0.1 * term) << "y+ " << yp;  // next term: kappa u / 5 of it
+    EXPECT_LT((yp - u) / yp, 2e-4) << "y+ " << yp;
+  }
+  // u+ = B + ln(y+ - u+ + exp(-kappa B) P3(kappa u+)) / kappa: the log law within 1.2 % at y+ =
+  // 100 and 0.1 % from y+ = 1000 (the correction term shrinks as 1 / y+).
+  for (const auto& [yp, rel] : {std::pair{100.0, 0.012}, {1000.0, 1e-3}, {1e4, 1e-3}}) {
+    const double u = law.u_plus(yp), log_law = std::log(yp) / law.kappa + law.B;
+    EXPECT_NEAR(u, log_law, rel * u) << "y+ " << yp;
+  }
+}
+
+TEST(LawOfTheWall, FrictionVelocityRecoversTheOneTheSpeedWasMadeWith) {
+  const LawOfTheWall law;
+  const double nu = 1e-6, u_tau = 0.05;
+  for (double yp : {0.5, 5.0, 30.0, 300.0}) {
+    const double y = yp * nu / u_tau, U = u_tau * law.u_plus(yp);
+    EXPECT_NEAR(law.friction_velocity(U, y, nu), u_tau, 1e-12 * u_tau) << "y+ " << yp;
+  }
+  EXPECT_EQ(law.friction_velocity(0.0, 1e-3, nu), 0.0);
+  EXPECT_THROW((void)law.friction_velocity(1.0, 0.0, nu), std::invalid_argument);
+  EXPECT_THROW((void)law.friction_velocity(-1.0, 1e-3, nu), std::invalid_argument);
+}
+
+TEST(WallOmega, IsTheSublayerValueNearTheWallAndTheLogValueFarFromIt) {
+  const double nu = 1e-6, u_tau = 0.05;
+  const auto at = [&](double yp) {
+    const double y = yp * nu / u_tau;
+    return std::pair{wall_omega(y, u_tau, nu), y};
+  };
+  const auto [w_near, y_near] = at(0.1);
+  EXPECT_NEAR(w_near / (6 * nu / (0.075 * y_near * y_near)), 1.0, 1e-4);
+  const auto [w_far, y_far] = at(1000.0);
+  EXPECT_NEAR(w_far / (u_tau / (0.3 * 0.41 * y_far)), 1.0, 1e-4);
+}
