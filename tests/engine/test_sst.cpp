@@ -7,6 +7,8 @@
 // near-wall solution of the omega equation) and F1 -> 0 in the free stream; nu_t = k / omega in
 // equilibrium and Bradshaw's -u'v' = a1 k (nu_t S = a1 k) where the strain is large; the
 // production limiter.
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "auvloop/engine/turbulence/sst.hpp"
@@ -58,4 +60,16 @@ TEST(Sst, ProductionIsLimitedToTenBetaStarKOmegaAndSaysSo) {
   EXPECT_FALSE(limited);
   EXPECT_DOUBLE_EQ(production(c, 0.5, 20.0, 1.0, 10.0, &limited), 10 * 0.09 * 1.0 * 10.0);
   EXPECT_TRUE(limited);
+}
+
+TEST(Sst, FreeStreamValuesGiveTheirViscosityRatios) {
+  // The TMR's flat plate: U = 1, L = 1, Re = 5e6 per unit length: nu_t / nu = 1.125 / 125.
+  const double nu = 1.0 / 5e6;
+  const auto tmr = tmr_freestream(1.0, 1.0, nu);
+  EXPECT_NEAR(tmr.k / tmr.omega / nu, 0.009, 1e-15);
+  EXPECT_DOUBLE_EQ(tmr.omega, 125.0);
+  // 1 % intensity at 1.54 m/s in sea water, nu_t / nu = 10.
+  const auto sea = freestream_from_intensity(1.54, 0.01, 10.0, 1.05e-6);
+  EXPECT_NEAR(std::sqrt(2.0 / 3 * sea.k), 0.0154, 1e-15);  // u' from k = 3/2 u'^2
+  EXPECT_NEAR(sea.k / sea.omega / 1.05e-6, 10.0, 1e-12);
 }

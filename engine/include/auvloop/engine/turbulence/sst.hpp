@@ -76,4 +76,22 @@ inline double production(const SstConstants& c, double nu_t, double S, double k,
   return std::min(p, cap);
 }
 
+// Free-stream values of k (m^2/s^2) and omega (1/s) for inlets and initial fields.
+struct FreeStream {
+  double k = 0, omega = 0;
+};
+// The TMR's for its verification cases: k = 1.125 U^2 / Re_L, omega = 125 U / L with
+// Re_L = U L / nu (so nu_t / nu = 0.009); U in m/s, L the reference length (m).
+inline FreeStream tmr_freestream(double U, double L, double nu) {
+  const double re = U * L / nu;
+  return {1.125 * U * U / re, 125 * U / L};
+}
+// From a turbulence intensity I (u' / U) and a viscosity ratio nu_t / nu: k = 1.5 (I U)^2,
+// omega = k / (nu ratio).
+inline FreeStream freestream_from_intensity(double U, double intensity, double viscosity_ratio,
+                                            double nu) {
+  const double k = 1.5 * (intensity * U) * (intensity * U);
+  return {k, k / (nu * viscosity_ratio)};
+}
+
 }  // namespace auvloop::engine::turbulence
