@@ -51,9 +51,9 @@ double LawOfTheWall::friction_velocity(double U, double y, double nu) const {
   return 0.5 * (lo + hi);
 }
 
-double wall_omega(double y, double u_tau, double nu, double beta1, double beta_star, double kappa) {
-  const double vis = 6 * nu / (beta1 * y * y);
-  const double log = u_tau / (std::sqrt(beta_star) * kappa * y);
+double wall_omega(double y, double u_tau, double nu, const SstConstants& c) {
+  const double vis = 6 * nu / (c.beta1 * y * y);
+  const double log = u_tau / (std::sqrt(c.beta_star) * c.kappa * y);
   return std::sqrt(vis * vis + log * log);
 }
 

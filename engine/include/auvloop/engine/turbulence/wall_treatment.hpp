@@ -13,6 +13,8 @@
 //   omegaWallFunction blends them), so each dominates where it holds.
 #pragma once
 
+#include "auvloop/engine/turbulence/sst.hpp"
+
 namespace auvloop::engine::turbulence {
 
 struct LawOfTheWall {
@@ -27,8 +29,8 @@ struct LawOfTheWall {
   [[nodiscard]] double friction_velocity(double U, double y, double nu) const;
 };
 
-// The first cell's omega (1/s) at wall distance y with friction velocity u_tau.
-double wall_omega(double y, double u_tau, double nu, double beta1 = 0.075, double beta_star = 0.09,
-                  double kappa = 0.41);
+// The first cell's omega (1/s) at wall distance y with friction velocity u_tau, with the model's
+// beta1, beta* and kappa.
+double wall_omega(double y, double u_tau, double nu, const SstConstants& c = {});
 
 }  // namespace auvloop::engine::turbulence
