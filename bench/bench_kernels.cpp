@@ -129,9 +129,10 @@ int main(int argc, char** argv) {
     line("hybrid Gauss-Seidel sweep, single", sweep_single, single_sweep_bytes);
     line("residual r = b - A x and its norms", residual, residual_bytes);
     constexpr int kRegions = 2000;
-    const auto regions = [&](double serial_seconds) {
+    const auto regions = [&](double serial_seconds, bool on_team = false) {
       return best_seconds(3,
                           [&] {
+                            const fv::Team::Region team(on_team ? fv::threads() : 1);
                             for (int k = 0; k < kRegions; ++k) {
                               if (serial_seconds > 0) {  // busy work on the calling thread alone
                                 const auto until = std::chrono::steady_clock::now() +
@@ -150,6 +151,11 @@ int main(int argc, char** argv) {
     for (const double us : {5.0, 20.0, 100.0, 500.0})
       std::printf("%-8d fork-join after %3.0f us of serial work %11.2f us per region, beyond it\n",
                   t, us, 1e6 * regions(us * 1e-6) - us);
+    std::printf("%-8d %-40s %10.2f us per loop\n", t, "team loop, back to back",
+                1e6 * regions(0, true));
+    for (const double us : {5.0, 20.0, 100.0, 500.0})
+      std::printf("%-8d team loop after %3.0f us of serial work %11.2f us per loop, beyond it\n", t,
+                  us, 1e6 * regions(us * 1e-6, true) - us);
     if (comma == std::string::npos) break;
     pos = comma + 1;
   }

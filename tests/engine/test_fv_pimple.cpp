@@ -76,7 +76,8 @@ bool same(const Snapshot& a, const Snapshot& b) {
 TEST(FvThreads, BitwiseIdenticalForOneTwoAndThreeThreads) {
   // 22^3 = 10,648 cells: 2 face blocks in the assembly scatters, 5 blocks in the hybrid
   // Gauss-Seidel smoother, 3 fixed blocks in every reduction, and loops split wherever they
-  // exceed 4096 indices, so 2 and 3 threads share out every kind of parallel loop.
+  // exceed 1024 indices, so 2 and 3 threads share out every kind of parallel loop (on the team
+  // that each time step opens, team.hpp).
   using engine::fv::AsymmetricMethod;
   using engine::fv::SymmetricMethod;
   constexpr int n = 22;

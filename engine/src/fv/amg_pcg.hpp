@@ -6,10 +6,11 @@
 //
 // The method (after Notay's AGMG: "An aggregation-based algebraic multigrid method", ETNA 37,
 // 2010, and Notay and Vassilevski's K-cycle, Numer. Linear Algebra Appl. 15, 2008):
-//   1. setup, once per grid: two passes of pairwise aggregation per level, each pairing a row
+//   1. setup, once per grid: three passes of pairwise aggregation per level, each pairing a row
 //      with its most strongly coupled free neighbour (largest |a_ij|, if at least a quarter of
-//      its largest coupling), give aggregates of about four rows; coarse levels until 64 rows or
-//      until a level keeps more than 0.6 of its rows;
+//      its largest coupling), give aggregates of about eight rows (AGMG's two passes give four:
+//      amg_pcg.cpp says why three); coarse levels until 64 rows or until a level keeps more
+//      than 0.6 of its rows;
 //   2. coefficients, whenever the matrix changed since the last solve (the correctors of one
 //      outer iteration share it): the Galerkin product P^T A P with piecewise-constant P (sums of
 //      the fine coefficients: symmetric positive definite when A is), row by coarse row, and the

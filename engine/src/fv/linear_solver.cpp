@@ -260,6 +260,7 @@ int iterate(Solver& solver, const Sparse& A, std::span<const double> source, std
 
 SolveStats LinearSolver::solve_symmetric(const Matrix& m, std::span<double> x,
                                          SymmetricMethod method) {
+  const Team::Region team(threads());  // the solve's loops on one team (team.hpp)
   auto& I = *impl_;
   // CG and CHOLMOD want a positive definite matrix: the Laplacian is negative definite, so solve
   // (-A) x = -b.
@@ -315,6 +316,7 @@ SolveStats LinearSolver::solve_symmetric(const Matrix& m, std::span<double> x,
 
 SolveStats LinearSolver::solve_asymmetric(const Matrix& m, std::span<double> x,
                                           AsymmetricMethod method, double tolerance) {
+  const Team::Region team(threads());
   auto& I = *impl_;
   const Tolerance tol = tolerance > 0 ? Tolerance(tolerance, I.tolerance.norm) : I.tolerance;
   I.load(m, 1.0);

@@ -9,8 +9,10 @@
 //      depends on the length only, in block order;
 //   4. an algorithm whose result depends on a partition (the hybrid Gauss-Seidel smoother,
 //      sparse.hpp) takes a partition that depends on the matrix only.
-// Loops use TBB's static partitioner: each thread takes the same contiguous share of a range in
-// every loop, so the data a thread touched in one loop is in its cache for the next.
+// Inside a Team::Region (a time step, a linear solve) the loops run as phases of that team
+// (team.hpp), elsewhere on TBB's pool with its static partitioner. Either way each thread starts
+// on the same contiguous share of a range in every loop, so the data a thread touched in one
+// loop is in its cache for the next.
 #pragma once
 
 #include <tbb/blocked_range.h>
@@ -25,15 +27,16 @@
 #include <span>
 
 #include "auvloop/engine/fv/mesh.hpp"
+#include "team.hpp"
 
 namespace auvloop::engine::fv {
 
 // Below this many indices a loop runs on the calling thread (a fork-join costs a microsecond or
 // two): vector operations; loops over matrix rows (several entries each) split from kRowGrain.
-inline constexpr int kSerialBelow = 4096;
-inline constexpr int kRowGrain = 512;
+inline constexpr int kSerialBelow = 1024;
+inline constexpr int kRowGrain = 256;
 // Vector operations of the solvers (a few flops per entry, in loops that follow one another).
-inline constexpr int kVectorGrain = 2048;
+inline constexpr int kVectorGrain = 512;
 
 // The number of threads the engine's loops may use now.
 inline int threads() {
@@ -42,11 +45,29 @@ inline int threads() {
   return std::max(1, std::min(tbb::this_task_arena::max_concurrency(), static_cast<int>(limit)));
 }
 
-// fn(begin, end) over contiguous sub-ranges of [0, n) of at least `grain` indices.
+// A phase of the team is split into this many parts per thread: a late thread's parts go to the
+// others in pieces, while each thread still starts on the same contiguous share in every loop.
+inline constexpr int kPartsPerThread = 4;
+
+// fn(begin, end) over contiguous sub-ranges of [0, n) of at least `grain` indices: on the team
+// the calling thread leads (team.hpp), else on TBB's pool; serially inside a team's part.
 template <class F>
 void parallel_ranges(int n, F&& fn, int grain = kSerialBelow) {
-  if (n <= grain || threads() == 1) {
+  if (n <= grain || threads() == 1 || Team::in_part()) {
     if (n > 0) fn(0, n);
+    return;
+  }
+  if (Team* team = Team::current()) {
+    const int parts =
+        std::min({kPartsPerThread * team->size(), Team::kMaxParts, n / std::max(grain, 1)});
+    if (parts < 2) {
+      fn(0, n);
+      return;
+    }
+    team->run(parts, [&](int k) {
+      fn(static_cast<int>(static_cast<long long>(n) * k / parts),
+         static_cast<int>(static_cast<long long>(n) * (k + 1) / parts));
+    });
     return;
   }
   tbb::parallel_for(
@@ -69,8 +90,17 @@ void parallel_for(int n, F&& fn, int grain = kSerialBelow) {
 // calling thread alone when `serial`.
 template <class F>
 void parallel_blocks(int blocks, F&& fn, bool serial = false) {
-  if (serial || blocks == 1 || threads() == 1) {
+  if (serial || blocks == 1 || threads() == 1 || Team::in_part()) {
     for (int k = 0; k < blocks; ++k) fn(k);
+    return;
+  }
+  if (Team* team = Team::current()) {
+    const int parts = std::min(blocks, Team::kMaxParts);
+    team->run(parts, [&](int p) {
+      const int end = static_cast<int>(static_cast<long long>(blocks) * (p + 1) / parts);
+      for (int k = static_cast<int>(static_cast<long long>(blocks) * p / parts); k < end; ++k)
+        fn(k);
+    });
     return;
   }
   tbb::parallel_for(

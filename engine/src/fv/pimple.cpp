@@ -127,6 +127,7 @@ void Pimple::adapt_time_step() {
 }
 
 StepReport Pimple::step() {
+  const Team::Region team(threads());  // every loop of the step on one team (team.hpp)
   if (settings_.target_courant > 0 && steps_ > 0) adapt_time_step();
   if (!body_force.empty() && body_force.size() != static_cast<std::size_t>(mesh_.cells()))
     throw std::invalid_argument(fmt::format("Pimple: body_force has {} entries for {} cells",
