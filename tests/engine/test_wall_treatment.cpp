@@ -60,3 +60,25 @@ TEST(WallOmega, IsTheSublayerValueNearTheWallAndTheLogValueFarFromIt) {
   const auto [w_far, y_far] = at(1000.0);
   EXPECT_NEAR(w_far / (u_tau / (0.3 * 0.41 * y_far)), 1.0, 1e-4);
 }
+
+TEST(WallProduction, VanishesInTheSublayerAndIsTheLogLayersInIt) {
+  // P = u_tau^4 / nu (1 - du+/dy+) du+/dy+: in the sublayer u+ = y+ - O(y+^4), so P ~ y+^3 and
+  // tiny; in the log layer du+/dy+ = 1 / (kappa y+) (1 + O(1 / y+)), so P -> u_tau^3 / (kappa y).
+  const LawOfTheWall law;
+  const double nu = 1e-6, u_tau = 0.05;
+  const double log_value_at_1 = u_tau * u_tau * u_tau / (law.kappa * nu / u_tau);
+  EXPECT_LT(wall_production(law, 0.1, u_tau, nu), 1e-4 * log_value_at_1);
+  for (const auto& [yp, rel] : {std::pair{300.0, 0.02}, {3000.0, 3e-3}}) {
+    const double y = yp * nu / u_tau;
+    EXPECT_NEAR(wall_production(law, yp, u_tau, nu) / (u_tau * u_tau * u_tau / (law.kappa * y)),
+                1.0, rel)
+        << "y+ " << yp;
+  }
+  // dy+/du+ against a central difference of y_plus.
+  for (double u : {0.5, 8.0, 20.0}) {
+    const double h = 1e-5;
+    EXPECT_NEAR(law.dy_plus_du_plus(u), (law.y_plus(u + h) - law.y_plus(u - h)) / (2 * h),
+                1e-7 * law.dy_plus_du_plus(u))
+        << "u+ " << u;
+  }
+}

@@ -1,6 +1,10 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "auvloop/engine/fv/matrix.hpp"
 
+#include <algorithm>
+
+#include "auvloop/engine/fv/operators.hpp"
+
 #include "parallel.hpp"
 
 namespace auvloop::engine::fv {
@@ -103,6 +107,40 @@ void Matrix::relax(std::span<const double> x_prev, double alpha) {
     const double d = diag[c] / alpha;
     source[c] += (d - diag[c]) * x_prev[c];
     diag[c] = d;
+  });
+}
+
+void Matrix::fix_values(const Mesh& mesh, std::span<const int> cells,
+                        std::span<const double> values) {
+  // Serial over the fixed cells (a wall's first cells: a small set); each fixed cell's row and
+  // its neighbours' couplings to it, in ascending face order.
+  const auto fixed = [&](std::size_t c) {
+    return std::binary_search(cells.begin(), cells.end(), static_cast<int>(c));
+  };
+  const int internal = mesh.internal_faces();
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    const auto c = static_cast<std::size_t>(cells[i]);
+    const double v = values[i];
+    for (int f : mesh.cell_faces(cells[i])) {
+      if (f >= internal) continue;
+      const auto fs = static_cast<std::size_t>(f);
+      const bool owner = static_cast<std::size_t>(mesh.owner(f)) == c;
+      const auto other = static_cast<std::size_t>(owner ? mesh.neighbour(f) : mesh.owner(f));
+      // The other cell's coefficient of c: lower if c is the owner (row N, column P), else upper.
+      double& to_c = owner ? lower[fs] : upper[fs];
+      if (!fixed(other)) source[other] -= to_c * v;
+      to_c = 0;
+      (owner ? upper[fs] : lower[fs]) = 0;  // c's own row
+    }
+    source[c] = diag[c] * v;
+  }
+}
+
+void SpTerm::add_to(Matrix& eq, double sign) const {
+  const Mesh& mesh = *m;
+  parallel_for(mesh.cells(), [&](int c) {
+    const auto s = static_cast<std::size_t>(c);
+    eq.diag[s] += sign * rate[s] * mesh.volume(c);
   });
 }
 

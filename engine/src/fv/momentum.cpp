@@ -19,11 +19,21 @@ namespace auvloop::engine::fv {
 
 void Pimple::assemble_momentum(bool final) {
   const TimeScheme ts = time_scheme();
+  if (turbulence_) transpose_stress();
   for (std::size_t i = 0; i < 3; ++i) {
     if (!active_[i]) continue;
     Matrix& eq = momentum_.eq[i];
-    eq = ddt(mesh_, ts, U_old_[0][i], U_old_[1][i]) +
-         div(mesh_, phi, U.c[i], settings_.convection) - laplacian(mesh_, settings_.nu, U.c[i]);
+    // div(nu_eff grad U) implicit and div(nu_eff dev2(grad U^T)) explicit with a turbulence
+    // model, else laplacian(nu, U); no time derivative when steady.
+    const auto convection = div(mesh_, phi, U.c[i], settings_.convection);
+    const auto diffusion = turbulence_ ? laplacian(mesh_, turbulence_->nu_eff(), U.c[i])
+                                       : laplacian(mesh_, settings_.nu, U.c[i]);
+    if (settings_.steady) {
+      eq = convection - diffusion;
+    } else {
+      eq = ddt(mesh_, ts, U_old_[0][i], U_old_[1][i]) + convection - diffusion;
+    }
+    if (turbulence_) eq.add_rhs(mesh_, work_.transpose[i]);
     if (!body_force.empty()) {
       auto& f = work_.rhs;
       f.resize(body_force.size());
@@ -32,6 +42,53 @@ void Pimple::assemble_momentum(bool final) {
     }
     if (!final && settings_.relax_u < 1) eq.relax(U.c[i].cells, settings_.relax_u);
   }
+}
+
+// The explicit part of the effective stress, per unit volume and component j (OpenFOAM's
+// divDevReff): (1 / V) sum_f nu_eff,f [sum_i S_f,i (du_i/dx_j)_f - 2/3 (div U)_f S_f,j], with the
+// face gradients linearly interpolated from the cell gradients (the owner's on boundary faces).
+// Zero for uniform nu_eff and divergence-free U in the continuum; it carries grad(nu_t) . grad U^T.
+void Pimple::transpose_stress() {
+  const auto n = static_cast<std::size_t>(mesh_.cells());
+  auto& g = work_.grad_u;
+  for (std::size_t i = 0; i < 3; ++i) {
+    g[i].resize(n);
+    mesh_.gradient(U.c[i].cells, U.c[i].boundary, g[i]);
+  }
+  const auto nu_eff = turbulence_->nu_eff();
+  const int internal = mesh_.internal_faces();
+  for (auto& t : work_.transpose) t.resize(n);
+  scatter_faces(
+      mesh_,
+      [&](int b, int e) {
+        for (auto& t : work_.transpose)
+          for (auto c = static_cast<std::size_t>(b); c < static_cast<std::size_t>(e); ++c) t[c] = 0;
+      },
+      [&](int f, bool own, bool nei) {
+        const auto fs = static_cast<std::size_t>(f);
+        const auto P = static_cast<std::size_t>(mesh_.owner(f));
+        Eigen::Matrix3d G;  // G(i, j) = du_i/dx_j on the face
+        if (f < internal) {
+          const auto N = static_cast<std::size_t>(mesh_.neighbour(f));
+          const double w = mesh_.weight(f);
+          for (std::size_t i = 0; i < 3; ++i)
+            G.row(static_cast<Eigen::Index>(i)) = (w * g[i][P] + (1 - w) * g[i][N]).transpose();
+        } else {
+          if (U.c[0].is_empty(mesh_, f - internal)) return;
+          for (std::size_t i = 0; i < 3; ++i)
+            G.row(static_cast<Eigen::Index>(i)) = g[i][P].transpose();
+        }
+        const Eigen::Vector3d& S = mesh_.area(f);
+        const Eigen::Vector3d t = nu_eff[fs] * (G.transpose() * S - (2.0 / 3.0) * G.trace() * S);
+        for (std::size_t j = 0; j < 3; ++j) {
+          const double v = t[static_cast<Eigen::Index>(j)];
+          if (own) work_.transpose[j][P] += v;
+          if (nei && f < internal)
+            work_.transpose[j][static_cast<std::size_t>(mesh_.neighbour(f))] -= v;
+        }
+      });
+  for (auto& t : work_.transpose)
+    parallel_for(mesh_.cells(), [&](int c) { t[static_cast<std::size_t>(c)] /= mesh_.volume(c); });
 }
 
 void Pimple::solve_momentum(StepReport& r, bool first) {

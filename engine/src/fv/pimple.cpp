@@ -108,6 +108,7 @@ void Pimple::initialise() {
   for (auto& force : predictor_force_) force.clear();
   steps_ = 0;
   dt_old_ = 0;
+  if (turbulence_) turbulence_->initialise(U, phi);
 }
 
 void Pimple::set_time_step(double dt) {
@@ -139,6 +140,10 @@ StepReport Pimple::step() {
   good_.U_old = U_old_;
   good_.phi_old = phi_old_;
   good_.predictor_force = predictor_force_;
+  if (turbulence_) {
+    turbulence_->save();
+    turbulence_->begin_step();
+  }
   U_old_[1].swap(U_old_[0]);
   for (std::size_t i = 0; i < 3; ++i) U_old_[0][i] = U.c[i].cells;
   phi_old_[1].swap(phi_old_[0]);
@@ -153,7 +158,8 @@ StepReport Pimple::step() {
   r.time = time_ + dt_;
   try {
     for (int outer = 1; outer <= settings_.outer_iterations; ++outer) {
-      const bool final = outer == settings_.outer_iterations;
+      // The final outer iteration is unrelaxed, unless the solve is steady (SIMPLE).
+      const bool final = outer == settings_.outer_iterations && !settings_.steady;
       auto t0 = std::chrono::steady_clock::now();
       apply_slip();
       assemble_momentum(final);
@@ -165,6 +171,18 @@ StepReport Pimple::step() {
         correct_pressure(r, outer == 1 && corr == 0, final);
       store_predictor_force();
       r.seconds_pressure += seconds_since(t0);
+      if (turbulence_) {
+        t0 = std::chrono::steady_clock::now();
+        TurbulenceInput in;
+        in.U = &U;
+        in.phi = phi;
+        in.time = time_scheme();
+        in.steady = settings_.steady;
+        in.final = final;
+        in.solver = &solver_;
+        r.turbulence.add(turbulence_->correct(in));
+        r.seconds_turbulence += seconds_since(t0);
+      }
       r.outer_iterations = outer;
       // Converged outer loop: momentum's initial residual of this iteration is small enough.
       if (outer > 1 && r.outer_residual < settings_.outer_tolerance) break;
@@ -191,6 +209,7 @@ StepReport Pimple::step() {
     U_old_ = good_.U_old;
     phi_old_ = good_.phi_old;
     predictor_force_ = good_.predictor_force;
+    if (turbulence_) turbulence_->restore();
     throw DivergenceError(
         fmt::format("step {} (t = {:.6g} s) diverged: {}; the fields of t = {:.6g} s are kept{}",
                     r.step, r.time, e.what(), time_, write_last_good()));
@@ -206,6 +225,7 @@ void Pimple::check(const StepReport& r) const {
     for (int c = lo; c < hi; ++c)
       if (!std::isfinite(p.cells[static_cast<std::size_t>(c)]) || !U.cell(c).allFinite()) s[0] += 1;
   })[0];
+  if (turbulence_) turbulence_->check();
   for (int c = 0; bad > 0 && c < mesh_.cells(); ++c) {  // the first such cell, named
     const auto s = static_cast<std::size_t>(c);
     if (!std::isfinite(p.cells[s]) || !U.cell(c).allFinite())

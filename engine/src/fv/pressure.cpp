@@ -140,7 +140,8 @@ void Pimple::correct_pressure(StepReport& r, bool first, bool final) {
   auto& Df = W.Df;
   face_flux(HbyA, phiHbyA);
   Df.resize(static_cast<std::size_t>(mesh_.faces()));
-  const auto coeffs = time_scheme().coeffs();
+  auto coeffs = time_scheme().coeffs();
+  if (settings_.steady) coeffs = {0.0, 0.0, 0.0};  // no time derivative, no time correction
   parallel_for(mesh_.faces(), [&](int f) {
     const auto fs = static_cast<std::size_t>(f);
     const auto P = static_cast<std::size_t>(mesh_.owner(f));

@@ -36,19 +36,38 @@ double LawOfTheWall::u_plus(double yp) const {
   return u;
 }
 
+double LawOfTheWall::dy_plus_du_plus(double u) const {
+  const double ku = kappa * u;
+  return 1 + std::exp(-kappa * B) * kappa * (std::expm1(ku) - ku - ku * ku / 2);
+}
+
 double LawOfTheWall::friction_velocity(double U, double y, double nu) const {
   if (!(y > 0) || !(nu > 0) || !(U >= 0) || !std::isfinite(U))
     throw std::invalid_argument("friction velocity: need y > 0, nu > 0 and a finite U >= 0");
   if (U == 0) return 0;
-  // U / u_tau = u+(y u_tau / nu): with g(u_tau) = u_tau u+(y u_tau / nu) increasing in u_tau,
-  // bisect on log u_tau between the sublayer and the log-layer bounds, then polish.
-  const auto g = [&](double ut) { return ut * u_plus(y * ut / nu) - U; };
-  double lo = 1e-12 * U, hi = 2 * std::max(std::sqrt(U * nu / y), U);  // g(lo) < 0 < g(hi)
-  for (int it = 0; it < 200 && hi - lo > 1e-15 * hi; ++it) {
-    const double mid = std::sqrt(lo * hi);
-    (g(mid) < 0 ? lo : hi) = mid;
+  // With Re_y = U y / nu and u+ = U / u_tau, y+ = Re_y / u+: the root of
+  //     F(u+) = y_plus(u+) - Re_y / u+,
+  // increasing in u+ > 0, lies in (0, min(sqrt(Re_y), 300)] (y_plus(u) >= u): Newton's method
+  // kept inside the bracket, from its upper end (a handful of steps; bisection when a step
+  // would leave the bracket).
+  const double re = U * y / nu;
+  double lo = 0, hi = std::min(std::sqrt(re), 300.0), u = hi;
+  for (int it = 0; it < 200; ++it) {
+    const double f = y_plus(u) - re / u;
+    if (f == 0) break;
+    (f > 0 ? hi : lo) = u;
+    double next = u - f / (dy_plus_du_plus(u) + re / (u * u));
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    const bool done = std::abs(next - u) <= 1e-15 * u;
+    u = next;
+    if (done) break;
   }
-  return 0.5 * (lo + hi);
+  return U / u;
+}
+
+double wall_production(const LawOfTheWall& law, double y_plus, double u_tau, double nu) {
+  const double slope = 1 / law.dy_plus_du_plus(law.u_plus(y_plus));  // du+/dy+
+  return u_tau * u_tau * u_tau * u_tau / nu * (1 - slope) * slope;
 }
 
 double wall_omega(double y, double u_tau, double nu, const SstConstants& c) {

@@ -229,6 +229,55 @@ Result run_schaefer_turek_2d2(bool quick) {
   res.rows.push_back(interval_row("cL max", r.cl_max, 0.99, 1.01));
   return res;
 }
+// NASA TMR 2DZP with SST k-omega (validation-data.md, section 4), solved steady on the
+// mesher::flat_plate family. Quick: level 2 (3,840 cells, first cell y+ about 0.4) against
+// CFL3D on the TMR's coarsest grid (3,264 cells), within 2 % (measured 1.2 % and 1.6 % low:
+// the two grids stretch differently). Full: levels 2, 1, 0 with the observed order, the finest
+// against CFL3D's finest (545 x 385), Cf(0.97) within 1 % and CD within 1.5 % (issue 16).
+Result run_flat_plate_sst(bool quick) {
+  Result res{"flat-plate-sst", {}, {}};
+  const std::vector<int> levels = quick ? std::vector<int>{2} : std::vector<int>{2, 1, 0};
+  std::vector<FlatPlateResult> r;
+  for (int level : levels) {
+    FlatPlateCase c;
+    c.level = level;
+    r.push_back(flat_plate_sst(c));
+    const auto& x = r.back();
+    res.notes.push_back(fmt::format(
+        "level {} ({} cells): Cf(0.97) {:.6f}, CD {:.6f}, plate y+ {:.3g}-{:.3g}, {} SIMPLE "
+        "iterations{}, {} cells bounded, {:.1f} s",
+        level, x.cells, x.cf_097, x.cd, x.y_plus.min, x.y_plus.max, x.iterations,
+        x.converged ? "" : " (NOT converged)", x.bounded_cells, x.seconds));
+    Row conv{fmt::format("level {} converged", level),
+             x.converged ? 1.0 : 0.0,
+             1.0,
+             x.converged ? 0.0 : 1.0,
+             0.0,
+             x.converged};
+    res.rows.push_back(conv);
+  }
+  const auto relative = [](std::string q, double v, double ref, double tol) {
+    Row row{std::move(q), v, ref, std::abs(v / ref - 1), tol, false};
+    row.pass = row.error <= tol;
+    return row;
+  };
+  if (quick) {
+    res.rows.push_back(
+        relative("Cf(0.97) level 2 vs CFL3D 3,264 cells", r[0].cf_097, 0.00262625, 0.02));
+    res.rows.push_back(relative("CD level 2 vs CFL3D 3,264 cells", r[0].cd, 0.00278507, 0.02));
+    return res;
+  }
+  const auto& fine = r.back();
+  for (auto [name, f] :
+       {std::pair{"Cf(0.97)", &FlatPlateResult::cf_097}, std::pair{"CD", &FlatPlateResult::cd}}) {
+    const double a = r[0].*f, b = r[1].*f, c = r[2].*f;
+    const double order = (a - b) * (b - c) > 0 ? std::log2((a - b) / (b - c)) : 0.0;
+    res.notes.push_back(fmt::format("{}: observed order {:.2f} (levels 2-1-0)", name, order));
+  }
+  res.rows.push_back(relative("Cf(0.97) finest vs CFL3D 545x385", fine.cf_097, 0.00269085, 0.01));
+  res.rows.push_back(relative("CD finest vs CFL3D 545x385", fine.cd, 0.00285332, 0.015));
+  return res;
+}
 }  // namespace
 
 const std::vector<Case>& cases() {
@@ -248,6 +297,9 @@ const std::vector<Case>& cases() {
       {"schaefer-turek-2d2",
        "cylinder in a channel, Re = 100 shedding: St, cD max, cL max against Schaefer-Turek",
        run_schaefer_turek_2d2},
+      {"flat-plate-sst",
+       "NASA TMR zero-pressure-gradient flat plate, SST k-omega: Cf(0.97) and CD against CFL3D",
+       run_flat_plate_sst},
   };
   return all;
 }

@@ -6,12 +6,15 @@
 // stated, with their source, where each case is defined.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <string>
 #include <vector>
 
 #include "auvloop/engine/fv/operators.hpp"
+#include "auvloop/engine/turbulence/sst_model.hpp"
 #include "auvloop/mesher/cylinder_grid.hpp"
+#include "auvloop/mesher/flat_plate_grid.hpp"
 
 namespace auvloop::engine::validation {
 
@@ -118,5 +121,32 @@ struct SheddingCase {
   fv::Convection convection = fv::Convection::van_leer_skew;
 };
 SheddingResult schaefer_turek_2d2(const SheddingCase& c);
+
+// NASA TMR 2DZP (zero-pressure-gradient flat plate, Re = 5e6 per metre) with SST k-omega,
+// solved steady (SIMPLE) on mesher::flat_plate(spec, level) until Cf(0.97) and the plate drag
+// settle: Cf along the plate, Cf(0.97), CD (reference length 2), the plate's y+ range.
+struct FlatPlateCase {
+  mesher::FlatPlateSpec spec;
+  int level = 2;
+  int max_iterations = 20000;
+  int check_every = 100;    // iterations between convergence checks
+  double tolerance = 1e-5;  // relative change of Cf(0.97) and CD over check_every iterations
+  double relax_u = 0.7, relax_p = 0.3, relax_turbulence = 0.7;
+  std::function<void(const std::string&)> progress;  // one line per check; may be empty
+  bool laminar = false;  // no turbulence model (a check of the steady solver itself)
+  fv::Convection turbulence_convection = fv::Convection::van_leer_skew;
+};
+struct FlatPlateResult {
+  int cells = 0, iterations = 0;
+  bool converged = false;
+  double cf_097 = 0, cd = 0;
+  std::vector<double> x, cf;  // per plate face
+  turbulence::WallYPlus y_plus;
+  long bounded_cells = 0;                   // summed over the iterations
+  long limited_cells = 0;                   // in the last iteration
+  std::array<double, 4> final_residuals{};  // U, p, k, omega (initial, last iteration)
+  double seconds = 0;
+};
+FlatPlateResult flat_plate_sst(const FlatPlateCase& c);
 
 }  // namespace auvloop::engine::validation

@@ -68,6 +68,10 @@ struct Matrix {
   void h_operator(const Mesh& mesh, std::span<const double> x, std::span<double> h) const;
   // Implicit under-relaxation (Patankar): diag / alpha, source + (1 - alpha) / alpha diag x_prev.
   void relax(std::span<const double> x_prev, double alpha);
+  // Fixes phi = values[i] in cells[i] (OpenFOAM's setValues; the cells ascending, each once):
+  // their rows become diag phi = diag value, and each neighbour takes its coupling to a fixed
+  // cell into its source, so the solve returns exactly the values there.
+  void fix_values(const Mesh& mesh, std::span<const int> cells, std::span<const double> values);
 };
 
 Matrix operator+(Matrix a, const Matrix& b);

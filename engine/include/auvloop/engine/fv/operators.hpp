@@ -102,6 +102,19 @@ inline DdtTerm ddt(const Mesh& mesh, const TimeScheme& ts, std::span<const doubl
   return {&mesh, ts, old, oldold};
 }
 
+// Sp(rate, phi): the implicit source rate phi (rate in 1/s, per cell), volume-integrated into the
+// diagonal: diag += rate V. A destruction term reads `+ Sp(...)` on the left-hand side (its rate
+// positive), which keeps the matrix diagonally dominant: positivity of k and omega rests on it.
+struct SpTerm {
+  const Mesh* m;
+  std::span<const double> rate;
+  [[nodiscard]] const Mesh& mesh() const { return *m; }
+  void add_to(Matrix& eq, double sign) const;
+};
+inline SpTerm Sp(const Mesh& mesh, std::span<const double> rate) {
+  return {&mesh, rate};
+}
+
 // Sums of terms, evaluated term by term into the matrix they are assigned or added to.
 template <Term A, Term B>
 struct TermSum {

@@ -17,6 +17,7 @@
 #include "auvloop/engine/fv/field.hpp"
 #include "auvloop/engine/fv/linear_solver.hpp"
 #include "auvloop/engine/fv/operators.hpp"
+#include "auvloop/engine/fv/turbulence_model.hpp"
 
 namespace auvloop::engine::fv {
 
@@ -53,6 +54,10 @@ struct PimpleSettings {
   // last-good.vtu / .pvd (ParaView) and last-good.checkpoint (restart); empty: kept in memory.
   std::filesystem::path divergence_directory;
   double outer_tolerance = 0;  // stop the outer loop once momentum's initial residual is below
+  // A steady solve (SIMPLE): no time derivative, and every outer iteration under-relaxed (U by
+  // relax_u, p by relax_p, a turbulence model by its own): a step is one pass of the
+  // iteration towards the steady flow, its dt only a label.
+  bool steady = false;
 };
 
 struct StepReport {
@@ -71,6 +76,10 @@ struct StepReport {
   // Parts of the above: momentum assembly (in seconds_momentum) and every cell-gradient
   // evaluation (deferred corrections, grad p; spread over all three).
   double seconds_assembly = 0, seconds_gradient = 0;
+  // The turbulence model's equations (none: zero), summed over the outer iterations, and their
+  // wall-clock time.
+  TurbulenceReport turbulence;
+  double seconds_turbulence = 0;
 };
 
 // Thrown when a step diverges (NaN, Courant number beyond the limit, a linear solve that no
@@ -96,6 +105,11 @@ class Pimple {
   // Marks a patch as slip (symmetry): zero normal velocity, zero tangential stress (lagged by
   // one outer iteration through the boundary values).
   void slip(const std::string& patch);
+  // Attaches a turbulence model (turbulence_model.hpp; not owned, it must outlive this flow;
+  // nullptr detaches): momentum then diffuses with its nu_eff, and its correct() runs after the
+  // pressure correctors of every outer iteration. Before initialise().
+  void set_turbulence(TurbulenceModel* model) { turbulence_ = model; }
+  [[nodiscard]] TurbulenceModel* turbulence() const { return turbulence_; }
   // Boundary values and face fluxes from the current U (call after setting U and its BCs).
   void initialise();
   StepReport step();
@@ -123,6 +137,7 @@ class Pimple {
     std::array<Matrix, 3> eq;  // without the pressure gradient
   };
   void assemble_momentum(bool final);
+  void transpose_stress();
   void solve_momentum(StepReport& r, bool first);
   void correct_pressure(StepReport& r, bool first, bool final);
   void store_predictor_force();
@@ -147,6 +162,8 @@ class Pimple {
     std::vector<double> D, Df, phiHbyA, net, rhs, h, source, p_prev;
     std::array<std::vector<double>, 3> HbyA;
     std::vector<Eigen::Vector3d> gp;
+    std::array<std::vector<Eigen::Vector3d>, 3> grad_u;  // transpose_stress()
+    std::array<std::vector<double>, 3> transpose;
     Matrix p_eq;
   };
   Work work_;
@@ -181,6 +198,7 @@ class Pimple {
   int steps_ = 0;
   double dt_ = 0;      // this step's time step
   double dt_old_ = 0;  // the previous step's (0 before the first step)
+  TurbulenceModel* turbulence_ = nullptr;
 };
 
 // Maximum Courant number dt * sum |phi| / (2 V) over the cells, with the cell where it occurs.

@@ -1,0 +1,129 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Menter's SST k-omega model (2003; sst.hpp has its point functions) as a fv::TurbulenceModel:
+// k and omega transported on the finite-volume operators of the momentum equation, the eddy
+// viscosity nu_t, and the wall treatment for any y+ (wall_treatment.hpp). Incompressible:
+//   ddt(omega) + div(phi, omega) - Sp(div phi) omega - laplacian(nu + sigma_w nu_t, omega)
+//       == gamma S^2 - Sp(beta omega) omega + (1 - F1) 2 sigma_w2 grad(k) . grad(omega) / omega
+//   ddt(k) + div(phi, k) - Sp(div phi) k - laplacian(nu + sigma_k nu_t, k)
+//       == min(nu_t S^2, 10 beta* k omega) - Sp(beta* omega) k
+//   nu_t = a1 k / max(a1 omega, S F2)
+// with S^2 = 2 S_ij S_ij, sigma, beta and gamma blended by F1, F1 and F2 from the wall distance.
+// The omega production is gamma S^2 (Menter, Kuntz and Langtry 2003), which is gamma P / nu_t
+// with the unlimited P; OpenFOAM v1912 caps it consistently with the k limiter (its GbyNu), a
+// difference only where the limiter acts (the limited_cells count of the report).
+//
+// One correct() (the PIMPLE hook after the pressure correctors, turbulence_model.hpp):
+//   1. the cell gradients of U, k and omega; S^2 per cell; F1 with the current k, omega;
+//   2. the wall treatment per wall face f with first cell P: the wall-parallel speed U_t of P
+//      relative to the wall at the face-normal distance y of its centre, u_tau from Spalding's
+//      law, y+ = y u_tau / nu; the first cell's omega fixed to wall_omega(y, u_tau) and its k
+//      production set to wall_production(y+, u_tau) (averaged over a cell's wall faces);
+//   3. the omega equation (bounded TVD convection, implicit destruction, the cross-diffusion
+//      term explicit where it is positive and implicit where it is negative), under-relaxed in
+//      all but the final outer iteration (every iteration when steady), solved, bounded below;
+//   4. the k equation likewise (its wall-cell production from step 2); k at walls zero
+//      gradient (the wall treatment supplies its production for any y+);
+//   5. nu_t per cell with F2 from the new k, omega; per internal face by linear interpolation;
+//      per wall face the wall function's nu_t,w = max(0, u_tau^2 y / U_t - nu), so the
+//      momentum equation's wall flux (nu + nu_t,w) U_t / y is the law-of-the-wall shear
+//      u_tau^2 at any y+ (nu_t,w = 0 in the viscous sublayer: the no-slip wall of a resolved
+//      boundary layer).
+// Positivity: the bound raises k below k_min and omega below omega_min to the floor and counts
+// the cells it changed (TurbulenceReport::bounded_cells): with bounded convection and implicit
+// destruction it should act rarely, and a report that it acts often says the solution is in
+// trouble. Free-stream values at inlets, zero gradient at outlets and symmetry planes.
+#pragma once
+
+#include <array>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "auvloop/engine/fv/turbulence_model.hpp"
+#include "auvloop/engine/turbulence/sst.hpp"
+#include "auvloop/engine/turbulence/wall_treatment.hpp"
+
+namespace auvloop::engine::turbulence {
+
+struct SstSettings {
+  SstConstants constants;
+  LawOfTheWall law;
+  double nu = 1e-6;       // kinematic viscosity (m^2/s): the flow's
+  FreeStream freestream;  // inlet values and the initial fields
+  fv::Convection convection = fv::Convection::van_leer_skew;  // bounded (TVD)
+  fv::AsymmetricMethod solver = fv::AsymmetricMethod::bicgstab_jacobi;
+  double tolerance = 1e-8;  // linear solves of k and omega (the flow's residual norm)
+  double relax = 0.7;       // under-relaxation of k and omega (not in a transient's final
+                            // outer iteration)
+  double floor = 1e-15;     // k_min and omega_min as this fraction of the free-stream values
+};
+
+// The achieved y+ of the first cells on one wall patch (the solver's report, item 4).
+struct WallYPlus {
+  std::string patch;
+  int faces = 0;
+  double min = 0, mean = 0, max = 0;  // mean: area-weighted
+};
+
+class SstModel final : public fv::TurbulenceModel {
+ public:
+  // `wall_distance`: per cell of `mesh` (wall_distance.hpp). Throws std::invalid_argument if its
+  // size is not the mesh's, a setting is out of range, or the free stream is not positive.
+  SstModel(const fv::Mesh& mesh, std::vector<double> wall_distance, SstSettings settings);
+
+  fv::ScalarField k;      // m^2/s^2
+  fv::ScalarField omega;  // 1/s
+  fv::ScalarField nu_t;   // m^2/s; boundary: per face, walls from the wall treatment
+
+  // Free-stream k and omega fixed on a patch (an inlet).
+  void inlet(const std::string& patch);
+
+  void initialise(const fv::VectorField& U, std::span<const double> phi) override;
+  void begin_step() override;
+  [[nodiscard]] std::span<const double> nu_eff() const override { return nu_eff_; }
+  fv::TurbulenceReport correct(const fv::TurbulenceInput& input) override;
+  void save() override;
+  void restore() override;
+  void check() const override;
+  [[nodiscard]] std::vector<const fv::ScalarField*> fields() const override {
+    return {&k, &omega, &nu_t};
+  }
+  [[nodiscard]] std::vector<fv::ScalarField*> fields() override { return {&k, &omega, &nu_t}; }
+
+  // Per wall patch, from the last correct() (or initialise()).
+  [[nodiscard]] std::vector<WallYPlus> y_plus() const;
+  // Per cell: the blending function F1 of the last correct().
+  [[nodiscard]] std::span<const double> f1() const { return F1_; }
+  [[nodiscard]] const SstSettings& settings() const { return settings_; }
+
+ private:
+  struct WallFace {
+    int face = 0, patch = 0;
+    double y = 0;      // face-normal distance of the owner's centre (m)
+    double u_tau = 0;  // m/s
+    double y_plus = 0;
+    double nu_t = 0;  // the wall function's nu_t,w (m^2/s)
+  };
+  void wall_treatment(const fv::VectorField& U);
+  void update_nu_t();
+  void strain(const fv::VectorField& U);
+
+  const fv::Mesh& mesh_;
+  SstSettings settings_;
+  std::vector<double> d_;  // wall distance per cell
+  std::vector<WallFace> walls_;
+  std::vector<int> wall_cells_;              // ascending, each once
+  std::vector<double> wall_omega_, wall_G_;  // per wall cell
+  std::vector<double> S2_, F1_, nu_eff_;
+  std::array<std::vector<double>, 2> k_old_, omega_old_;
+  struct Saved {
+    fv::ScalarField k, omega, nu_t;
+    std::array<std::vector<double>, 2> k_old, omega_old;
+    std::vector<double> nu_eff;
+  };
+  Saved good_;
+  fv::Matrix eq_;
+  std::vector<double> rate_, source_, gamma_;
+};
+
+}  // namespace auvloop::engine::turbulence

@@ -1,0 +1,337 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SST k-omega transport: steps 1-5 of auvloop/engine/turbulence/sst_model.hpp.
+#include "auvloop/engine/turbulence/sst_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "../fv/diagnosis.hpp"
+#include "../fv/parallel.hpp"
+#include "../fv/scratch.hpp"
+
+namespace auvloop::engine::turbulence {
+
+using fv::parallel_for;
+using fv::Scratch;
+
+namespace {
+void require(bool ok, const std::string& what) {
+  if (!ok) throw std::invalid_argument("SST k-omega: " + what);
+}
+}  // namespace
+
+SstModel::SstModel(const fv::Mesh& mesh, std::vector<double> wall_distance, SstSettings settings)
+    : k(mesh, "k"),
+      omega(mesh, "omega"),
+      nu_t(mesh, "nut"),
+      mesh_(mesh),
+      settings_(settings),
+      d_(std::move(wall_distance)) {
+  const auto n = static_cast<std::size_t>(mesh.cells());
+  require(d_.size() == n, fmt::format("{} wall distances for {} cells", d_.size(), n));
+  for (std::size_t c = 0; c < n; ++c)
+    require(d_[c] > 0 && std::isfinite(d_[c]),
+            fmt::format("the wall distance of {} is {}", fv::cell_at(mesh, static_cast<int>(c)),
+                        d_[c]));
+  require(settings_.nu > 0, "nu must be positive");
+  require(settings_.freestream.k > 0 && settings_.freestream.omega > 0,
+          fmt::format("free-stream k and omega must be positive, got {} and {}",
+                      settings_.freestream.k, settings_.freestream.omega));
+  require(settings_.relax > 0 && settings_.relax <= 1, "relax must be in (0, 1]");
+  require(settings_.floor > 0 && settings_.floor < 1, "floor must be in (0, 1)");
+  // The wall faces and their first cells (step 2's addressing, fixed for the grid).
+  const int internal = mesh.internal_faces();
+  for (int b = 0; b < mesh.boundary_faces(); ++b) {
+    const int pi = mesh.patch_of(b);
+    if (mesh.grid().patches[static_cast<std::size_t>(pi)].type != mesher::PatchType::wall) continue;
+    const int f = b + internal;
+    const Eigen::Vector3d n_hat = mesh.area(f).normalized();
+    WallFace w;
+    w.face = f;
+    w.patch = pi;
+    w.y = std::abs((mesh.face_centre(f) - mesh.centre(mesh.owner(f))).dot(n_hat));
+    walls_.push_back(w);
+    wall_cells_.push_back(mesh.owner(f));
+  }
+  std::sort(wall_cells_.begin(), wall_cells_.end());
+  wall_cells_.erase(std::unique(wall_cells_.begin(), wall_cells_.end()), wall_cells_.end());
+  wall_omega_.assign(wall_cells_.size(), 0.0);
+  wall_G_.assign(wall_cells_.size(), 0.0);
+  S2_.assign(n, 0.0);
+  F1_.assign(n, 1.0);
+  nu_eff_.assign(static_cast<std::size_t>(mesh.faces()), settings_.nu);
+}
+
+void SstModel::inlet(const std::string& patch) {
+  k.fix(mesh_, patch, settings_.freestream.k);
+  omega.fix(mesh_, patch, settings_.freestream.omega);
+}
+
+void SstModel::initialise(const fv::VectorField& U, std::span<const double>) {
+  std::fill(k.cells.begin(), k.cells.end(), settings_.freestream.k);
+  std::fill(omega.cells.begin(), omega.cells.end(), settings_.freestream.omega);
+  k.update_boundary(mesh_);
+  omega.update_boundary(mesh_);
+  strain(U);
+  wall_treatment(U);
+  update_nu_t();
+  for (auto& level : k_old_) level = k.cells;
+  for (auto& level : omega_old_) level = omega.cells;
+}
+
+void SstModel::begin_step() {
+  k_old_[1].swap(k_old_[0]);
+  k_old_[0] = k.cells;
+  omega_old_[1].swap(omega_old_[0]);
+  omega_old_[0] = omega.cells;
+}
+
+// Step 1 (S^2 = 2 S_ij S_ij from the cell gradients of U).
+void SstModel::strain(const fv::VectorField& U) {
+  const auto n = static_cast<std::size_t>(mesh_.cells());
+  std::array<Scratch<Eigen::Vector3d>, 3> g{
+      Scratch<Eigen::Vector3d>(n), Scratch<Eigen::Vector3d>(n), Scratch<Eigen::Vector3d>(n)};
+  for (std::size_t i = 0; i < 3; ++i) mesh_.gradient(U.c[i].cells, U.c[i].boundary, *g[i]);
+  parallel_for(mesh_.cells(), [&](int c) {
+    const auto s = static_cast<std::size_t>(c);
+    Eigen::Matrix3d G;  // G(i, j) = d u_i / d x_j
+    for (int i = 0; i < 3; ++i) G.row(i) = g[static_cast<std::size_t>(i)][s].transpose();
+    const Eigen::Matrix3d Sij = 0.5 * (G + G.transpose());
+    S2_[s] = 2 * Sij.squaredNorm();
+  });
+}
+
+// Step 2.
+void SstModel::wall_treatment(const fv::VectorField& U) {
+  const double nu = settings_.nu;
+  const auto& c = settings_.constants;
+  const int internal = mesh_.internal_faces();
+  parallel_for(
+      static_cast<int>(walls_.size()),
+      [&](int i) {
+        auto& w = walls_[static_cast<std::size_t>(i)];
+        const int b = w.face - internal;
+        const Eigen::Vector3d n_hat = mesh_.area(w.face).normalized();
+        Eigen::Vector3d u = U.cell(mesh_.owner(w.face)) - U.face(b);  // relative to the wall
+        u -= u.dot(n_hat) * n_hat;
+        const double ut = u.norm();
+        w.u_tau = settings_.law.friction_velocity(ut, w.y, nu);
+        w.y_plus = w.y * w.u_tau / nu;
+        w.nu_t = ut > 0 ? std::max(0.0, w.u_tau * w.u_tau * w.y / ut - nu) : 0.0;
+      },
+      64);
+  // Per wall cell: the mean over its wall faces (in ascending face order).
+  std::fill(wall_omega_.begin(), wall_omega_.end(), 0.0);
+  std::fill(wall_G_.begin(), wall_G_.end(), 0.0);
+  std::vector<int> count(wall_cells_.size(), 0);
+  for (const auto& w : walls_) {
+    const auto at = static_cast<std::size_t>(
+        std::lower_bound(wall_cells_.begin(), wall_cells_.end(), mesh_.owner(w.face)) -
+        wall_cells_.begin());
+    wall_omega_[at] += wall_omega(w.y, w.u_tau, nu, c);
+    wall_G_[at] += wall_production(settings_.law, w.y_plus, w.u_tau, nu);
+    ++count[at];
+  }
+  for (std::size_t j = 0; j < wall_cells_.size(); ++j) {
+    wall_omega_[j] /= count[j];
+    wall_G_[j] /= count[j];
+  }
+}
+
+// Step 5.
+void SstModel::update_nu_t() {
+  const auto& c = settings_.constants;
+  const double nu = settings_.nu;
+  parallel_for(mesh_.cells(), [&](int cell) {
+    const auto s = static_cast<std::size_t>(cell);
+    const double F2 = f2(c, k.cells[s], omega.cells[s], d_[s], nu);
+    nu_t.cells[s] = eddy_viscosity(c, k.cells[s], omega.cells[s], std::sqrt(S2_[s]), F2);
+  });
+  nu_t.update_boundary(mesh_);  // zero gradient everywhere; walls below
+  const int internal = mesh_.internal_faces();
+  for (const auto& w : walls_) nu_t.boundary[static_cast<std::size_t>(w.face - internal)] = w.nu_t;
+  parallel_for(mesh_.faces(), [&](int f) {
+    const auto fs = static_cast<std::size_t>(f);
+    if (f < internal) {
+      const double wt = mesh_.weight(f);
+      nu_eff_[fs] = nu + wt * nu_t.cells[static_cast<std::size_t>(mesh_.owner(f))] +
+                    (1 - wt) * nu_t.cells[static_cast<std::size_t>(mesh_.neighbour(f))];
+    } else {
+      nu_eff_[fs] = nu + nu_t.boundary[static_cast<std::size_t>(f - internal)];
+    }
+  });
+}
+
+fv::TurbulenceReport SstModel::correct(const fv::TurbulenceInput& in) {
+  const auto& c = settings_.constants;
+  const double nu = settings_.nu;
+  const auto n = static_cast<std::size_t>(mesh_.cells());
+  const int internal = mesh_.internal_faces();
+  fv::TurbulenceReport report;
+  // 1. Gradients, S^2, F1 and the blended constants' diffusivities.
+  strain(*in.U);
+  Scratch<Eigen::Vector3d> gk(n), gw(n);
+  mesh_.gradient(k.cells, k.boundary, *gk);
+  mesh_.gradient(omega.cells, omega.boundary, *gw);
+  Scratch<double> cross(n), div_phi(n);  // grad k . grad omega (1/s^3); div(phi) (1/s)
+  parallel_for(mesh_.cells(), [&](int cell) {
+    const auto s = static_cast<std::size_t>(cell);
+    cross[s] = gk[s].dot(gw[s]);
+    const double cd = cross_diffusion(c, cross[s], omega.cells[s]);
+    F1_[s] = turbulence::f1(c, k.cells[s], omega.cells[s], d_[s], nu, cd);
+  });
+  fv::div(mesh_, in.phi, *div_phi);
+  // 2. The wall treatment with the corrected U.
+  wall_treatment(*in.U);
+  const bool relax = in.steady || !in.final;
+  const auto diffusivity = [&](auto sigma_of) {
+    gamma_.resize(static_cast<std::size_t>(mesh_.faces()));
+    parallel_for(mesh_.faces(), [&](int f) {
+      const auto fs = static_cast<std::size_t>(f);
+      const auto P = static_cast<std::size_t>(mesh_.owner(f));
+      double sigma_nut;
+      if (f < internal) {
+        const auto N = static_cast<std::size_t>(mesh_.neighbour(f));
+        const double wt = mesh_.weight(f);
+        sigma_nut = wt * sigma_of(P) * nu_t.cells[P] + (1 - wt) * sigma_of(N) * nu_t.cells[N];
+      } else {
+        sigma_nut = sigma_of(P) * nu_t.boundary[static_cast<std::size_t>(f - internal)];
+      }
+      gamma_[fs] = nu + sigma_nut;
+    });
+  };
+  const auto assemble = [&](fv::ScalarField& phi_field,
+                            const std::array<std::vector<double>, 2>& old) {
+    if (in.steady) {
+      eq_ = fv::div(mesh_, in.phi, phi_field, settings_.convection) - fv::Sp(mesh_, *div_phi) -
+            fv::laplacian(mesh_, gamma_, phi_field) + fv::Sp(mesh_, rate_);
+    } else {
+      eq_ = fv::ddt(mesh_, in.time, old[0], old[1]) +
+            fv::div(mesh_, in.phi, phi_field, settings_.convection) - fv::Sp(mesh_, *div_phi) -
+            fv::laplacian(mesh_, gamma_, phi_field) + fv::Sp(mesh_, rate_);
+    }
+    eq_.add_rhs(mesh_, source_);
+  };
+  const auto solve = [&](fv::ScalarField& phi_field, const char* name, double floor,
+                         double& residual, int& iterations) {
+    // A negative net explicit source (the convection scheme's deferred correction next to a
+    // steep rise, e.g. ahead of a wall cell's fixed omega) would drive the cell negative: it is
+    // taken implicitly instead, as a destruction rate -source / phi (Patankar), which keeps the
+    // matrix an M-matrix with a non-negative source, so every iterate stays positive, and leaves
+    // the converged solution unchanged.
+    parallel_for(mesh_.cells(), [&](int cell) {
+      const auto s = static_cast<std::size_t>(cell);
+      if (eq_.source[s] >= 0) return;
+      eq_.diag[s] -= eq_.source[s] / std::max(phi_field.cells[s], floor);
+      eq_.source[s] = 0;
+    });
+    if (relax && settings_.relax < 1) eq_.relax(phi_field.cells, settings_.relax);
+    const auto stats = fv::solve_named(mesh_, eq_, phi_field.cells, name, [&] {
+      return in.solver->solve_asymmetric(eq_, phi_field.cells, settings_.solver,
+                                         settings_.tolerance);
+    });
+    residual = stats.initial_residual;
+    iterations = stats.iterations;
+    long bounded = 0;
+    for (auto& v : phi_field.cells)  // serial: a count, in cell order
+      if (!(v >= floor)) {
+        v = floor;
+        ++bounded;
+      }
+    report.bounded_cells += bounded;
+    phi_field.update_boundary(mesh_);
+  };
+  rate_.resize(n);
+  source_.resize(n);
+  // 3. omega.
+  diffusivity([&](std::size_t s) { return blend(c, F1_[s]).sigma_w; });
+  parallel_for(mesh_.cells(), [&](int cell) {
+    const auto s = static_cast<std::size_t>(cell);
+    const auto b = blend(c, F1_[s]);
+    const double w = omega.cells[s];
+    const double cd = (1 - F1_[s]) * 2 * c.sigma_w2 * cross[s] / w;  // 1/s^2
+    rate_[s] = b.beta * w + (cd < 0 ? -cd / w : 0.0);
+    source_[s] = b.gamma * S2_[s] + (cd > 0 ? cd : 0.0);
+  });
+  assemble(omega, omega_old_);
+  eq_.fix_values(mesh_, wall_cells_, wall_omega_);
+  solve(omega, "omega equation", settings_.floor * settings_.freestream.omega,
+        report.omega_residual, report.omega_iterations);
+  // 4. k, with the production of the old nu_t (limited) and the wall cells' from step 2.
+  diffusivity([&](std::size_t s) { return blend(c, F1_[s]).sigma_k; });
+  long limited = 0;
+  for (std::size_t s = 0; s < n; ++s) {  // serial: counts in cell order
+    bool capped = false;
+    source_[s] =
+        production(c, nu_t.cells[s], std::sqrt(S2_[s]), k.cells[s], omega.cells[s], &capped);
+    limited += capped ? 1 : 0;
+    rate_[s] = c.beta_star * omega.cells[s];
+  }
+  for (std::size_t j = 0; j < wall_cells_.size(); ++j)
+    source_[static_cast<std::size_t>(wall_cells_[j])] = wall_G_[j];
+  report.limited_cells = limited;
+  assemble(k, k_old_);
+  solve(k, "k equation", settings_.floor * settings_.freestream.k, report.k_residual,
+        report.k_iterations);
+  // 5. nu_t and the effective viscosity.
+  update_nu_t();
+  return report;
+}
+
+void SstModel::save() {
+  good_.k = k;
+  good_.omega = omega;
+  good_.nu_t = nu_t;
+  good_.k_old = k_old_;
+  good_.omega_old = omega_old_;
+  good_.nu_eff = nu_eff_;
+}
+
+void SstModel::restore() {
+  k = good_.k;
+  omega = good_.omega;
+  nu_t = good_.nu_t;
+  k_old_ = good_.k_old;
+  omega_old_ = good_.omega_old;
+  nu_eff_ = good_.nu_eff;
+}
+
+void SstModel::check() const {
+  for (int cell = 0; cell < mesh_.cells(); ++cell) {
+    const auto s = static_cast<std::size_t>(cell);
+    if (!std::isfinite(k.cells[s]) || !std::isfinite(omega.cells[s]) ||
+        !std::isfinite(nu_t.cells[s]))
+      throw std::runtime_error(
+          fmt::format("non-finite k, omega or nu_t (k = {:.3g}, omega = {:.3g}) in {}", k.cells[s],
+                      omega.cells[s], fv::cell_at(mesh_, cell)));
+  }
+}
+
+std::vector<WallYPlus> SstModel::y_plus() const {
+  std::vector<WallYPlus> out;
+  const auto& patches = mesh_.grid().patches;
+  std::vector<double> area_sum;
+  for (const auto& w : walls_) {
+    const auto& name = patches[static_cast<std::size_t>(w.patch)].name;
+    auto it = std::find_if(out.begin(), out.end(), [&](const auto& r) { return r.patch == name; });
+    if (it == out.end()) {
+      out.push_back({name, 0, w.y_plus, 0, w.y_plus});
+      area_sum.push_back(0);
+      it = out.end() - 1;
+    }
+    const auto at = static_cast<std::size_t>(it - out.begin());
+    const double a = mesh_.area(w.face).norm();
+    ++it->faces;
+    it->min = std::min(it->min, w.y_plus);
+    it->max = std::max(it->max, w.y_plus);
+    it->mean += a * w.y_plus;
+    area_sum[at] += a;
+  }
+  for (std::size_t i = 0; i < out.size(); ++i) out[i].mean /= area_sum[i];
+  return out;
+}
+
+}  // namespace auvloop::engine::turbulence

@@ -1,0 +1,143 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// NASA TMR 2DZP with SST k-omega (validation.hpp, flat_plate_sst):
+//   1. the TMR's set-up in SI units: U = 1 m/s, Re = 5e6 per metre (nu = 2e-7 m^2/s), free
+//      stream k = 1.125 U^2 / Re_L and omega = 125 U / L with L = 1 m; inlet: U, k, omega fixed;
+//      outlet and top: p = 0; symmetry plane ahead of the plate: slip; plate: no-slip with the
+//      SST's wall treatment;
+//   2. a steady SIMPLE solve from the free stream (PimpleSettings::steady), until Cf(0.97) and
+//      the plate drag change by less than `tolerance` (relative) over `check_every` iterations;
+//   3. the wall shear of every plate face, tau_w = (nu + nu_t,w) U_t / y (the momentum
+//      equation's discrete wall flux), Cf = tau_w / (U^2 / 2); Cf(0.97) linear between face
+//      centres; CD = the integral of Cf over the plate / 2 (the TMR's reference length 2).
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "auvloop/engine/fv/pimple.hpp"
+#include "auvloop/engine/turbulence/sst_model.hpp"
+#include "auvloop/engine/turbulence/wall_distance.hpp"
+#include "auvloop/engine/validation.hpp"
+
+namespace auvloop::engine::validation {
+
+namespace {
+struct PlateShear {
+  std::vector<double> x, cf;  // per plate face, ascending x
+  double cd = 0;
+};
+
+PlateShear plate_shear(const fv::Mesh& mesh, const fv::Pimple& flow,
+                       const turbulence::SstModel& sst, double U_inf, double nu) {
+  PlateShear out;
+  const auto& patch = mesh.grid().patches[static_cast<std::size_t>(fv::patch_index(mesh, "plate"))];
+  const int internal = mesh.internal_faces();
+  double drag = 0, area = 0;  // area: the plate's length times the grid's depth
+  for (int i = 0; i < patch.size; ++i) {
+    const int f = patch.start + i;
+    const int P = mesh.owner(f);
+    const Eigen::Vector3d n_hat = mesh.area(f).normalized();
+    const double y = std::abs((mesh.face_centre(f) - mesh.centre(P)).dot(n_hat));
+    Eigen::Vector3d u = flow.U.cell(P);
+    u -= u.dot(n_hat) * n_hat;
+    const double nu_w =
+        nu + (flow.turbulence() ? sst.nu_t.boundary[static_cast<std::size_t>(f - internal)] : 0.0);
+    out.x.push_back(mesh.face_centre(f).x());
+    out.cf.push_back(nu_w * u.norm() / y / (0.5 * U_inf * U_inf));
+    drag += nu_w * u.x() / y * mesh.area(f).norm();
+    area += mesh.area(f).norm();
+  }
+  out.cd = drag / (0.5 * U_inf * U_inf * area);
+  return out;
+}
+
+double at(const PlateShear& s, double x) {
+  for (std::size_t i = 1; i < s.x.size(); ++i)
+    if (s.x[i] >= x) {
+      const double t = (x - s.x[i - 1]) / (s.x[i] - s.x[i - 1]);
+      return (1 - t) * s.cf[i - 1] + t * s.cf[i];
+    }
+  throw std::logic_error("flat plate: x beyond the plate");
+}
+}  // namespace
+
+FlatPlateResult flat_plate_sst(const FlatPlateCase& c) {
+  const auto t0 = std::chrono::steady_clock::now();
+  // 1.
+  constexpr double U_inf = 1.0, L = 1.0, Re = 5e6;
+  const double nu = U_inf * L / Re;
+  const mesher::Grid grid = mesher::flat_plate(c.spec, c.level);
+  const fv::Mesh mesh(grid);
+  const mesher::Grid* grids[] = {&grid};
+  const auto walls = turbulence::wall_surface(grids);
+  fv::PimpleSettings s;
+  s.nu = nu;
+  s.steady = true;
+  s.dt = 1;  // a label: steady
+  s.outer_iterations = 1;
+  s.pressure_correctors = 1;
+  s.relax_u = c.relax_u;
+  s.relax_p = c.relax_p;
+  s.tolerance = 1e-8;
+  s.momentum_tolerance = 1e-6;
+  s.max_courant = 1e30;  // steady: the "Courant number" of the label dt means nothing
+  fv::Pimple flow(mesh, s);
+  turbulence::SstSettings ts;
+  ts.nu = nu;
+  ts.freestream = turbulence::tmr_freestream(U_inf, L, nu);
+  ts.relax = c.relax_turbulence;
+  ts.convection = c.turbulence_convection;
+  ts.tolerance = 1e-6;
+  turbulence::SstModel sst(mesh, turbulence::wall_distance(mesh, walls), ts);
+  flow.U.fix(mesh, "inlet", {U_inf, 0, 0});
+  flow.U.fix(mesh, "plate", {0, 0, 0});
+  flow.slip("symmetry");
+  flow.p.fix(mesh, "outlet", 0.0);
+  if (c.spec.top_type == mesher::PatchType::outlet) flow.p.fix(mesh, "top", 0.0);
+  sst.inlet("inlet");
+  for (std::size_t i = 0; i < flow.U.c[0].cells.size(); ++i) flow.U.c[0].cells[i] = U_inf;
+  if (!c.laminar) flow.set_turbulence(&sst);
+  flow.initialise();
+  // 2.
+  FlatPlateResult r;
+  r.cells = mesh.cells();
+  double cf_prev = 0, cd_prev = 0;
+  for (int it = 1; it <= c.max_iterations; ++it) {
+    const auto report = flow.step();
+    r.iterations = it;
+    r.bounded_cells += report.turbulence.bounded_cells;
+    r.limited_cells = report.turbulence.limited_cells;
+    r.final_residuals = {report.momentum_residual, report.pressure_residual,
+                         report.turbulence.k_residual, report.turbulence.omega_residual};
+    if (it % c.check_every != 0) continue;
+    const auto shear = plate_shear(mesh, flow, sst, U_inf, nu);
+    const double cf = at(shear, 0.97), cd = shear.cd;
+    if (c.progress)
+      c.progress(
+          fmt::format("iteration {}: Cf(0.97) {:.6f}, CD {:.6f}, residuals U {:.2e} p {:.2e} "
+                      "k {:.2e} omega {:.2e}",
+                      it, cf, cd, report.momentum_residual, report.pressure_residual,
+                      report.turbulence.k_residual, report.turbulence.omega_residual));
+    const bool settled = cf_prev > 0 && std::abs(cf - cf_prev) <= c.tolerance * cf &&
+                         std::abs(cd - cd_prev) <= c.tolerance * cd;
+    cf_prev = cf;
+    cd_prev = cd;
+    if (settled) {
+      r.converged = true;
+      break;
+    }
+  }
+  // 3.
+  const auto shear = plate_shear(mesh, flow, sst, U_inf, nu);
+  r.cf_097 = at(shear, 0.97);
+  r.cd = shear.cd;
+  r.x = shear.x;
+  r.cf = shear.cf;
+  for (const auto& y : sst.y_plus())
+    if (y.patch == "plate") r.y_plus = y;
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+}  // namespace auvloop::engine::validation

@@ -1,0 +1,180 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The SST model's coupling to the flow solver, each against something independent of it:
+//   - Matrix::fix_values against the equation solved with the fixed cells as known values;
+//   - momentum with a face viscosity nu(y) = nu0 (1 + a y) (a stand-in turbulence model) on plane
+//     Couette flow against the exact u(y) = U ln(1 + a y) / ln(1 + a H), second order;
+//   - the SST flat plate bitwise the same on 1, 2 and 3 threads;
+//   - a non-finite omega is diagnosed as a divergence naming the equation and the cell, with
+//     the last good k and omega kept.
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include "auvloop/engine/fv/pimple.hpp"
+#include "auvloop/engine/turbulence/sst_model.hpp"
+#include "auvloop/engine/turbulence/wall_distance.hpp"
+#include "auvloop/engine/validation.hpp"
+#include "auvloop/mesher/flat_plate_grid.hpp"
+#include "auvloop/mesher/generators.hpp"
+
+using namespace auvloop;
+namespace fv = engine::fv;
+
+TEST(MatrixFixValues, GivesTheSolutionWithTheFixedCellsAsKnownValues) {
+  // 1D diffusion on 8 cells, phi = 1 and 3 fixed at both ends by boundary values; cells 2 and
+  // 5 fixed to 7 and -2: the cells between must follow the straight lines between the fixed
+  // values, which the rest of the chain then sees as its end values.
+  mesher::BoxPatches patches;
+  patches.names = {"left", "right", "bottom", "top", "front", "back"};
+  patches.types = {mesher::PatchType::wall,  mesher::PatchType::wall,  mesher::PatchType::empty,
+                   mesher::PatchType::empty, mesher::PatchType::empty, mesher::PatchType::empty};
+  const auto grid = mesher::cartesian_box(mesher::graded_nodes(0, 8, 8), {0, 1}, {0, 1}, patches);
+  const fv::Mesh mesh(grid);
+  fv::ScalarField phi(mesh, "phi");
+  phi.fix(mesh, "left", 1.0);
+  phi.fix(mesh, "right", 3.0);
+  phi.update_boundary(mesh);
+  fv::Matrix eq = -fv::laplacian(mesh, 1.0, phi);
+  const std::vector<int> cells{2, 5};
+  const std::vector<double> values{7.0, -2.0};
+  eq.fix_values(mesh, cells, values);
+  fv::LinearSolver solver(mesh, fv::Tolerance(1e-14));
+  solver.solve_asymmetric(eq, phi.cells, fv::AsymmetricMethod::bicgstab_jacobi, 1e-14);
+  // Cell centres at 0.5, 1.5, ...; the left wall value 1 at x = 0, cell 2 (x = 2.5) at 7.
+  const auto line = [](double x0, double v0, double x1, double v1, double x) {
+    return v0 + (v1 - v0) * (x - x0) / (x1 - x0);
+  };
+  const std::vector<double> expect{line(0, 1, 2.5, 7, 0.5),    line(0, 1, 2.5, 7, 1.5),    7,
+                                   line(2.5, 7, 5.5, -2, 3.5), line(2.5, 7, 5.5, -2, 4.5), -2,
+                                   line(5.5, -2, 8, 3, 6.5),   line(5.5, -2, 8, 3, 7.5)};
+  for (std::size_t c = 0; c < 8; ++c) EXPECT_NEAR(phi.cells[c], expect[c], 1e-11) << "cell " << c;
+}
+
+namespace {
+// A turbulence model that only supplies nu_eff = nu0 (1 + a y) at every face centre.
+class LinearViscosity final : public fv::TurbulenceModel {
+ public:
+  LinearViscosity(const fv::Mesh& mesh, double nu0, double a) {
+    for (int f = 0; f < mesh.faces(); ++f) nu_.push_back(nu0 * (1 + a * mesh.face_centre(f).y()));
+  }
+  void initialise(const fv::VectorField&, std::span<const double>) override {}
+  void begin_step() override {}
+  [[nodiscard]] std::span<const double> nu_eff() const override { return nu_; }
+  fv::TurbulenceReport correct(const fv::TurbulenceInput&) override { return {}; }
+  void save() override {}
+  void restore() override {}
+  void check() const override {}
+  [[nodiscard]] std::vector<const fv::ScalarField*> fields() const override { return {}; }
+  [[nodiscard]] std::vector<fv::ScalarField*> fields() override { return {}; }
+
+ private:
+  std::vector<double> nu_;
+};
+
+// The largest |u - exact| / U of steady Couette flow (top wall at U) on n graded cells.
+double couette_error(int n) {
+  constexpr double U = 0.5, H = 0.2, nu0 = 0.01, a = 20.0;  // nu grows fivefold across
+  mesher::BoxPatches patches;
+  patches.names = {"left", "right", "bottom", "top", "front", "back"};
+  patches.types = {mesher::PatchType::periodic, mesher::PatchType::periodic,
+                   mesher::PatchType::wall,     mesher::PatchType::wall,
+                   mesher::PatchType::empty,    mesher::PatchType::empty};
+  const auto grid = mesher::cartesian_box(mesher::graded_nodes(0, 0.1, 3),
+                                          mesher::graded_nodes(0, H, n), {0, 0.05}, patches);
+  const fv::Mesh mesh(grid);
+  fv::PimpleSettings s;
+  s.nu = nu0;
+  s.steady = true;
+  s.relax_u = 0.9;
+  s.relax_p = 0.5;
+  s.tolerance = 1e-12;
+  fv::Pimple flow(mesh, s);
+  LinearViscosity model(mesh, nu0, a);
+  flow.set_turbulence(&model);
+  flow.U.fix(mesh, "bottom", {0, 0, 0});
+  flow.U.fix(mesh, "top", {U, 0, 0});
+  flow.initialise();
+  for (int k = 0; k < 1500; ++k) flow.step();
+  double worst = 0;
+  for (int c = 0; c < mesh.cells(); ++c) {
+    const double y = mesh.centre(c).y();
+    const double exact = U * std::log(1 + a * y) / std::log(1 + a * H);
+    worst = std::max(worst, std::abs(flow.U.c[0].cells[static_cast<std::size_t>(c)] - exact) / U);
+  }
+  return worst;
+}
+}  // namespace
+
+TEST(FvEffectiveViscosity, CouetteFlowWithViscosityLinearInYIsSecondOrder) {
+  const double coarse = couette_error(16), fine = couette_error(32);
+  EXPECT_LT(fine, 2e-3);
+  EXPECT_NEAR(std::log2(coarse / fine), 2.0, 0.2) << coarse << " " << fine;
+}
+
+namespace {
+std::vector<double> plate_cf(int threads) {
+  const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
+                                  static_cast<std::size_t>(threads));
+  engine::validation::FlatPlateCase c;
+  c.level = 2;  // 3,840 cells: every kind of loop splits
+  c.max_iterations = 15;
+  c.check_every = 5;
+  auto r = engine::validation::flat_plate_sst(c);
+  r.cf.push_back(r.cd);
+  return r.cf;
+}
+}  // namespace
+
+TEST(SstThreads, FlatPlateBitwiseIdenticalForOneTwoAndThreeThreads) {
+  const auto one = plate_cf(1);
+  EXPECT_EQ(one, plate_cf(2));
+  EXPECT_EQ(one, plate_cf(3));
+}
+
+TEST(SstDivergence, ANonFiniteOmegaNamesTheEquationAndKeepsTheLastGoodFields) {
+  const auto grid = mesher::flat_plate({}, 3);
+  const fv::Mesh mesh(grid);
+  const mesher::Grid* grids[] = {&grid};
+  fv::PimpleSettings s;
+  s.nu = 2e-7;
+  s.steady = true;
+  s.relax_u = 0.7;
+  s.relax_p = 0.3;
+  s.momentum_tolerance = 1e-6;
+  s.max_courant = 1e30;
+  fv::Pimple flow(mesh, s);
+  engine::turbulence::SstSettings ts;
+  ts.nu = s.nu;
+  ts.freestream = engine::turbulence::tmr_freestream(1.0, 1.0, s.nu);
+  engine::turbulence::SstModel sst(
+      mesh, engine::turbulence::wall_distance(mesh, engine::turbulence::wall_surface(grids)), ts);
+  flow.U.fix(mesh, "inlet", {1, 0, 0});
+  flow.U.fix(mesh, "plate", {0, 0, 0});
+  flow.slip("symmetry");
+  flow.p.fix(mesh, "outlet", 0.0);
+  flow.p.fix(mesh, "top", 0.0);
+  sst.inlet("inlet");
+  std::fill(flow.U.c[0].cells.begin(), flow.U.c[0].cells.end(), 1.0);
+  flow.set_turbulence(&sst);
+  flow.initialise();
+  for (int k = 0; k < 5; ++k) flow.step();
+  const auto k_good = sst.k.cells;
+  const auto u_good = flow.U.c[0].cells;
+  sst.omega.cells[400] = std::nan("");
+  try {
+    flow.step();
+    FAIL() << "no divergence reported";
+  } catch (const fv::DivergenceError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("step 6"), std::string::npos) << what;
+    EXPECT_NE(what.find("omega"), std::string::npos) << what;
+    EXPECT_NE(what.find("cell"), std::string::npos) << what;
+  }
+  // The step solved momentum and pressure before omega failed: all of it is undone.
+  EXPECT_EQ(flow.U.c[0].cells, u_good);
+  EXPECT_EQ(sst.k.cells, k_good);
+  EXPECT_TRUE(std::isnan(sst.omega.cells[400]));  // the fields the step began with
+}
