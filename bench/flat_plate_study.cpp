@@ -3,12 +3,16 @@
 // plate drag against the TMR's CFL3D and FUN3D values (validation-data.md, table 4), the plate's
 // y+ range, and optionally Cf(x) as CSV. Not a test: `auvloop validate flat-plate-sst` is the
 // check; this is how its grids and settings were studied (docs/cfd.md, "Turbulence").
-//   flat_plate_study --level 2 [--first-height 1e-6] [--max-iterations 20000]
+//   flat_plate_study --level 2 [--first-height 1e-6] [--plate-cells 256] [--upstream-cells 64]
+//                    [--normal-cells 192] [--max-iterations 20000] [--threads T]
 //                    [--relax-u 0.7] [--relax-p 0.3] [--relax-turbulence 0.7] [--csv cf.csv]
 //                    [--polymesh CASE_DIR]   (the grid for a peer solver, nothing is run)
 #include <cstdio>
 #include <fstream>
 
+#include <optional>
+
+#include <tbb/global_control.h>
 #include <CLI/CLI.hpp>
 
 #include "auvloop/engine/validation.hpp"
@@ -24,6 +28,12 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0, 5));
   app.add_option("--first-height", c.spec.first_height, "first cell height at level 0 (m)")
       ->check(CLI::PositiveNumber);
+  app.add_option("--plate-cells", c.spec.plate_cells, "cells along the plate at level 0")
+      ->check(CLI::Range(2, 100000));
+  app.add_option("--upstream-cells", c.spec.upstream_cells, "cells ahead of it at level 0")
+      ->check(CLI::Range(2, 100000));
+  app.add_option("--normal-cells", c.spec.normal_cells, "wall-normal cells at level 0")
+      ->check(CLI::Range(2, 100000));
   app.add_option("--max-iterations", c.max_iterations, "SIMPLE iterations at most")
       ->check(CLI::Range(1, 10000000));
   app.add_option("--check-every", c.check_every, "iterations between convergence checks")
@@ -34,13 +44,28 @@ int main(int argc, char** argv) {
   app.add_option("--relax-p", c.relax_p, "pressure under-relaxation")->check(CLI::Range(0.01, 1.0));
   app.add_option("--relax-turbulence", c.relax_turbulence, "k and omega under-relaxation")
       ->check(CLI::Range(0.01, 1.0));
-  bool upwind = false;
+  bool upwind = false, resolved = false;
+  app.add_flag("--resolved-wall", resolved,
+               "Menter's low-Re wall values (k = 0, omega_w = 60 nu / (beta1 d1^2)) instead of the "
+               "any-y+ treatment");
   app.add_flag("--upwind-turbulence", upwind, "first-order upwind convection of k and omega");
   app.add_flag("--laminar", c.laminar, "no turbulence model (checks the steady solver alone)");
+  app.add_option("--p-tolerance", c.pressure_tolerance, "pressure solve tolerance (relative)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--transport-tolerance", c.transport_tolerance,
+                 "U, k and omega solve tolerance (relative)")
+      ->check(CLI::PositiveNumber);
   app.add_option("--csv", csv, "write x, Cf of every plate face here");
   app.add_option("--polymesh", polymesh, "write the grid as an OpenFOAM case's polyMesh and stop");
+  int threads = 0;
+  app.add_option("--threads", threads, "threads (default: all the machine's)")
+      ->check(CLI::Range(1, 1024));
   CLI11_PARSE(app, argc, argv);
+  std::optional<tbb::global_control> limit;
+  if (threads > 0)
+    limit.emplace(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
   if (upwind) c.turbulence_convection = fv::Convection::upwind;
+  if (resolved) c.wall = turbulence::WallTreatment::resolved;
   if (!polymesh.empty()) {
     auvloop::mesher::write_openfoam_polymesh(polymesh,
                                              auvloop::mesher::flat_plate(c.spec, c.level));

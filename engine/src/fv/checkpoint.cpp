@@ -7,6 +7,8 @@
 //   | U (3 x cells, 3 x boundary) | p (cells, boundary) | phi (faces)
 //   | U^n, U^{n-1} (3 x cells each) | phi^n, phi^{n-1} (faces each)
 //   | 3 x (i32 n | predictor force component, n = cells or 0)   (version 2)
+//   | i32 arrays | arrays x (i32 n | n values): the turbulence model's state(), 0 arrays
+//     without a model                                             (version 3; 2 is read as 0)
 #include <cstdint>
 #include <cstring>
 #include <stdexcept>
@@ -21,7 +23,7 @@ namespace auvloop::engine::fv {
 
 namespace {
 constexpr char kMagic[8] = {'A', 'U', 'V', 'L', 'F', 'V', 'C', 'K'};
-constexpr std::uint32_t kVersion = 2;
+constexpr std::uint32_t kVersion = 3;
 
 template <class T>
 void put(std::string& out, const T& v) {
@@ -89,6 +91,12 @@ void Pimple::write_checkpoint(const std::filesystem::path& file) const {
     put(out, static_cast<std::int32_t>(force.size()));
     put(out, force);
   }
+  const auto state = turbulence_ ? turbulence_->state() : std::vector<std::vector<double>*>{};
+  put(out, static_cast<std::int32_t>(state.size()));
+  for (const auto* a : state) {
+    put(out, static_cast<std::int32_t>(a->size()));
+    put(out, *a);
+  }
   if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
   write_file_atomically(file, out);
 }
@@ -100,9 +108,10 @@ void Pimple::read_checkpoint(const std::filesystem::path& file) {
   if (std::memcmp(magic, kMagic, sizeof(kMagic)) != 0)
     throw std::runtime_error(fmt::format("{} is not an auvloop flow checkpoint", file.string()));
   const auto version = r.get<std::uint32_t>();
-  if (version != kVersion)
-    throw std::runtime_error(fmt::format("checkpoint {}: version {}, this build reads version {}",
-                                         file.string(), version, kVersion));
+  if (version != kVersion && version != 2)
+    throw std::runtime_error(
+        fmt::format("checkpoint {}: version {}, this build reads versions 2 and {}", file.string(),
+                    version, kVersion));
   expect_equal(r, "cells", r.get<std::int32_t>(), mesh_.cells());
   expect_equal(r, "faces", r.get<std::int32_t>(), mesh_.faces());
   expect_equal(r, "boundary faces", r.get<std::int32_t>(), mesh_.boundary_faces());
@@ -129,7 +138,22 @@ void Pimple::read_checkpoint(const std::filesystem::path& file) {
     force.assign(static_cast<std::size_t>(size), 0.0);
     r.get(force);
   }
+  const auto state = turbulence_ ? turbulence_->state() : std::vector<std::vector<double>*>{};
+  const auto arrays = version >= 3 ? r.get<std::int32_t>() : 0;
+  if (arrays != static_cast<std::int32_t>(state.size()))
+    throw std::runtime_error(fmt::format(
+        "checkpoint {}: {} turbulence-model arrays stored, the flow's model {} ({}); attach the "
+        "same model before reading",
+        file.string(), arrays, turbulence_ ? "has" : "is laminar: it has", state.size()));
+  std::vector<std::vector<double>> values(state.size());
+  for (std::size_t i = 0; i < state.size(); ++i) {
+    expect_equal(r, "values (turbulence state)", r.get<std::int32_t>(),
+                 static_cast<int>(state[i]->size()));
+    values[i].assign(state[i]->size(), 0.0);
+    r.get(values[i]);
+  }
   r.expect_end();
+  for (std::size_t i = 0; i < state.size(); ++i) *state[i] = std::move(values[i]);
   U = std::move(u);
   p = std::move(pressure);
   phi = std::move(flux);

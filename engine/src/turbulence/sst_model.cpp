@@ -58,6 +58,28 @@ SstModel::SstModel(const fv::Mesh& mesh, std::vector<double> wall_distance, SstS
   }
   std::sort(wall_cells_.begin(), wall_cells_.end());
   wall_cells_.erase(std::unique(wall_cells_.begin(), wall_cells_.end()), wall_cells_.end());
+  wall_faces_.assign(wall_cells_.size(), 0);
+  for (auto& w : walls_) {
+    w.cell = static_cast<int>(
+        std::lower_bound(wall_cells_.begin(), wall_cells_.end(), mesh.owner(w.face)) -
+        wall_cells_.begin());
+    ++wall_faces_[static_cast<std::size_t>(w.cell)];
+  }
+  if (settings_.wall == WallTreatment::resolved) {  // Menter's wall values, the TMR's
+    for (const auto& w : walls_) {
+      const auto& patch = mesh.grid().patches[static_cast<std::size_t>(w.patch)];
+      auto& kb = k.bcs[static_cast<std::size_t>(w.patch)];
+      auto& wb = omega.bcs[static_cast<std::size_t>(w.patch)];
+      for (auto* bc : {&kb, &wb}) {
+        bc->kind = fv::BcKind::fixed_value;
+        bc->value.resize(static_cast<std::size_t>(patch.size));
+      }
+      const auto i = static_cast<std::size_t>(w.face - patch.start);
+      const double d1 = 2 * w.y;  // the first cell's height
+      kb.value[i] = 0;
+      wb.value[i] = 10 * 6 * settings_.nu / (settings_.constants.beta1 * d1 * d1);
+    }
+  }
   wall_omega_.assign(wall_cells_.size(), 0.0);
   wall_G_.assign(wall_cells_.size(), 0.0);
   S2_.assign(n, 0.0);
@@ -120,24 +142,22 @@ void SstModel::wall_treatment(const fv::VectorField& U) {
         const double ut = u.norm();
         w.u_tau = settings_.law.friction_velocity(ut, w.y, nu);
         w.y_plus = w.y * w.u_tau / nu;
-        w.nu_t = ut > 0 ? std::max(0.0, w.u_tau * w.u_tau * w.y / ut - nu) : 0.0;
+        w.nu_t = ut > 0 && settings_.wall == WallTreatment::any_y_plus
+                     ? std::max(0.0, w.u_tau * w.u_tau * w.y / ut - nu)
+                     : 0.0;
       },
       64);
   // Per wall cell: the mean over its wall faces (in ascending face order).
   std::fill(wall_omega_.begin(), wall_omega_.end(), 0.0);
   std::fill(wall_G_.begin(), wall_G_.end(), 0.0);
-  std::vector<int> count(wall_cells_.size(), 0);
   for (const auto& w : walls_) {
-    const auto at = static_cast<std::size_t>(
-        std::lower_bound(wall_cells_.begin(), wall_cells_.end(), mesh_.owner(w.face)) -
-        wall_cells_.begin());
+    const auto at = static_cast<std::size_t>(w.cell);
     wall_omega_[at] += wall_omega(w.y, w.u_tau, nu, c);
     wall_G_[at] += wall_production(settings_.law, w.y_plus, w.u_tau, nu);
-    ++count[at];
   }
   for (std::size_t j = 0; j < wall_cells_.size(); ++j) {
-    wall_omega_[j] /= count[j];
-    wall_G_[j] /= count[j];
+    wall_omega_[j] /= wall_faces_[j];
+    wall_G_[j] /= wall_faces_[j];
   }
 }
 
@@ -257,7 +277,7 @@ fv::TurbulenceReport SstModel::correct(const fv::TurbulenceInput& in) {
     source_[s] = b.gamma * S2_[s] + (cd > 0 ? cd : 0.0);
   });
   assemble(omega, omega_old_);
-  eq_.fix_values(mesh_, wall_cells_, wall_omega_);
+  if (settings_.wall == WallTreatment::any_y_plus) eq_.fix_values(mesh_, wall_cells_, wall_omega_);
   solve(omega, "omega equation", settings_.floor * settings_.freestream.omega,
         report.omega_residual, report.omega_iterations);
   // 4. k, with the production of the old nu_t (limited) and the wall cells' from step 2.
@@ -270,8 +290,9 @@ fv::TurbulenceReport SstModel::correct(const fv::TurbulenceInput& in) {
     limited += capped ? 1 : 0;
     rate_[s] = c.beta_star * omega.cells[s];
   }
-  for (std::size_t j = 0; j < wall_cells_.size(); ++j)
-    source_[static_cast<std::size_t>(wall_cells_[j])] = wall_G_[j];
+  if (settings_.wall == WallTreatment::any_y_plus)
+    for (std::size_t j = 0; j < wall_cells_.size(); ++j)
+      source_[static_cast<std::size_t>(wall_cells_[j])] = wall_G_[j];
   report.limited_cells = limited;
   assemble(k, k_old_);
   solve(k, "k equation", settings_.floor * settings_.freestream.k, report.k_residual,

@@ -79,8 +79,8 @@ FlatPlateResult flat_plate_sst(const FlatPlateCase& c) {
   s.pressure_correctors = 1;
   s.relax_u = c.relax_u;
   s.relax_p = c.relax_p;
-  s.tolerance = 1e-8;
-  s.momentum_tolerance = 1e-6;
+  s.tolerance = c.pressure_tolerance;
+  s.momentum_tolerance = c.transport_tolerance;
   s.max_courant = 1e30;  // steady: the "Courant number" of the label dt means nothing
   fv::Pimple flow(mesh, s);
   turbulence::SstSettings ts;
@@ -88,7 +88,8 @@ FlatPlateResult flat_plate_sst(const FlatPlateCase& c) {
   ts.freestream = turbulence::tmr_freestream(U_inf, L, nu);
   ts.relax = c.relax_turbulence;
   ts.convection = c.turbulence_convection;
-  ts.tolerance = 1e-6;
+  ts.wall = c.wall;
+  ts.tolerance = c.transport_tolerance;
   turbulence::SstModel sst(mesh, turbulence::wall_distance(mesh, walls), ts);
   flow.U.fix(mesh, "inlet", {U_inf, 0, 0});
   flow.U.fix(mesh, "plate", {0, 0, 0});

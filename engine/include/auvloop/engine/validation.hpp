@@ -132,9 +132,12 @@ struct FlatPlateCase {
   int check_every = 100;    // iterations between convergence checks
   double tolerance = 1e-5;  // relative change of Cf(0.97) and CD over check_every iterations
   double relax_u = 0.7, relax_p = 0.3, relax_turbulence = 0.7;
+  // Linear solves per SIMPLE iteration, |b - A x| <= tol |b|: p, and U, k, omega.
+  double pressure_tolerance = 1e-8, transport_tolerance = 1e-6;
   std::function<void(const std::string&)> progress;  // one line per check; may be empty
   bool laminar = false;  // no turbulence model (a check of the steady solver itself)
   fv::Convection turbulence_convection = fv::Convection::van_leer_skew;
+  turbulence::WallTreatment wall = turbulence::WallTreatment::any_y_plus;
 };
 struct FlatPlateResult {
   int cells = 0, iterations = 0;

@@ -9,7 +9,8 @@
 //                            model's own equations with the corrected U and phi, then nu_eff;
 //   5. save() / restore()    with the step's last good fields (a diverged step restores both);
 //   6. check()               after the step: throws std::runtime_error naming the first cell
-//                            with a non-finite or non-physical value.
+//                            with a non-finite or non-physical value;
+//   7. state()               the arrays a checkpoint stores.
 // The flow never owns the model; the model must outlive the Pimple it is attached to.
 #pragma once
 
@@ -61,9 +62,13 @@ class TurbulenceModel {
   virtual void save() = 0;
   virtual void restore() = 0;
   virtual void check() const = 0;
-  // The model's cell fields, for output and checkpoints (k, omega, nu_t, ...).
+  // The model's cell fields, for output (k, omega, nu_t, ...).
   [[nodiscard]] virtual std::vector<const ScalarField*> fields() const = 0;
   [[nodiscard]] virtual std::vector<ScalarField*> fields() = 0;
+  // Every array a step reads besides the flow's and the settings (fields with their boundary
+  // values, old time levels, nu_eff), in a fixed order and of sizes fixed by the grid: what
+  // Pimple's checkpoint stores so that a restart continues bitwise.
+  [[nodiscard]] virtual std::vector<std::vector<double>*> state() = 0;
 };
 
 }  // namespace auvloop::engine::fv

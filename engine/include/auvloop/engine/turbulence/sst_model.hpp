@@ -45,6 +45,11 @@
 
 namespace auvloop::engine::turbulence {
 
+// How walls are treated: `any_y_plus` (the default) as above; `resolved`, Menter's low-Re wall
+// values as the TMR prescribes them, k = 0 and omega = 10 * 6 nu / (beta1 d1^2) on the wall face
+// (d1 the first cell's height) with a no-slip wall flux: only for y+ below about 1.
+enum class WallTreatment { any_y_plus, resolved };
+
 struct SstSettings {
   SstConstants constants;
   LawOfTheWall law;
@@ -56,6 +61,7 @@ struct SstSettings {
   double relax = 0.7;       // under-relaxation of k and omega (not in a transient's final
                             // outer iteration)
   double floor = 1e-15;     // k_min and omega_min as this fraction of the free-stream values
+  WallTreatment wall = WallTreatment::any_y_plus;
 };
 
 // The achieved y+ of the first cells on one wall patch (the solver's report, item 4).
@@ -89,6 +95,10 @@ class SstModel final : public fv::TurbulenceModel {
     return {&k, &omega, &nu_t};
   }
   [[nodiscard]] std::vector<fv::ScalarField*> fields() override { return {&k, &omega, &nu_t}; }
+  [[nodiscard]] std::vector<std::vector<double>*> state() override {
+    return {&k.cells,   &k.boundary, &omega.cells,   &omega.boundary, &nu_t.cells, &nu_t.boundary,
+            &k_old_[0], &k_old_[1],  &omega_old_[0], &omega_old_[1],  &nu_eff_};
+  }
 
   // Per wall patch, from the last correct() (or initialise()).
   [[nodiscard]] std::vector<WallYPlus> y_plus() const;
@@ -99,6 +109,7 @@ class SstModel final : public fv::TurbulenceModel {
  private:
   struct WallFace {
     int face = 0, patch = 0;
+    int cell = 0;      // index into wall_cells_ of its owner
     double y = 0;      // face-normal distance of the owner's centre (m)
     double u_tau = 0;  // m/s
     double y_plus = 0;
@@ -113,6 +124,7 @@ class SstModel final : public fv::TurbulenceModel {
   std::vector<double> d_;  // wall distance per cell
   std::vector<WallFace> walls_;
   std::vector<int> wall_cells_;              // ascending, each once
+  std::vector<int> wall_faces_;              // per wall cell: its wall faces
   std::vector<double> wall_omega_, wall_G_;  // per wall cell
   std::vector<double> S2_, F1_, nu_eff_;
   std::array<std::vector<double>, 2> k_old_, omega_old_;
