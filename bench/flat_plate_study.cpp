@@ -5,8 +5,10 @@
 // check; this is how its grids and settings were studied (docs/cfd.md, "Turbulence").
 //   flat_plate_study --level 2 [--first-height 1e-6] [--plate-cells 256] [--upstream-cells 64]
 //                    [--normal-cells 192] [--max-iterations 20000] [--threads T]
+//                    [--from-level L] (grid sequencing: levels L, L - 1, ..., --level)
 //                    [--relax-u 0.7] [--relax-p 0.3] [--relax-turbulence 0.7] [--csv cf.csv]
 //                    [--polymesh CASE_DIR]   (the grid for a peer solver, nothing is run)
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 
@@ -57,7 +59,10 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   app.add_option("--csv", csv, "write x, Cf of every plate face here");
   app.add_option("--polymesh", polymesh, "write the grid as an OpenFOAM case's polyMesh and stop");
-  int threads = 0;
+  int threads = 0, from_level = -1;
+  app.add_option("--from-level", from_level,
+                 "grid sequencing: solve this coarser level first, then each finer one from it")
+      ->check(CLI::Range(0, 5));
   app.add_option("--threads", threads, "threads (default: all the machine's)")
       ->check(CLI::Range(1, 1024));
   CLI11_PARSE(app, argc, argv);
@@ -75,7 +80,18 @@ int main(int argc, char** argv) {
     std::printf("  %s\n", line.c_str());
     std::fflush(stdout);
   };
-  const auto r = validation::flat_plate_sst(c);
+  // Grid sequencing: levels from_level, from_level - 1, ..., level, each from the one before.
+  validation::FlatPlateResult r;
+  for (int l = std::max(from_level, c.level); l >= c.level; --l) {
+    validation::FlatPlateResult previous = std::move(r);
+    validation::FlatPlateCase step = c;
+    step.level = l;
+    step.start = l < std::max(from_level, c.level) ? &previous : nullptr;
+    r = validation::flat_plate_sst(step);
+    if (l > c.level)
+      std::printf("level %d: %d cells, %d iterations, %.1f s; Cf(0.97) %.6f, CD %.6f\n", l, r.cells,
+                  r.iterations, r.seconds, r.cf_097, r.cd);
+  }
   std::printf(
       "level %d: %d cells, %d iterations (%s), %.1f s; Cf(0.97) %.6f (CFL3D 545x385 0.00269085, "
       "%+.2f %%), CD %.6f (0.00285332, %+.2f %%); plate y+ %.3g-%.3g (mean %.3g); bounded cells "

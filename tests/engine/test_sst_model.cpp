@@ -14,10 +14,12 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include "auvloop/engine/fv/output.hpp"
 #include "auvloop/engine/fv/pimple.hpp"
 #include "auvloop/engine/turbulence/sst_model.hpp"
 #include "auvloop/engine/turbulence/wall_distance.hpp"
 #include "auvloop/engine/validation.hpp"
+#include "auvloop/geometry/file_io.hpp"
 #include "auvloop/mesher/flat_plate_grid.hpp"
 #include "auvloop/mesher/generators.hpp"
 #include "temp_dir.hpp"
@@ -224,6 +226,12 @@ TEST(SstCheckpoint, ARestartContinuesBitwiseAndAModelMismatchIsNamed) {
   EXPECT_EQ(a.sst.k.cells, b.sst.k.cells);
   EXPECT_EQ(a.sst.omega.cells, b.sst.omega.cells);
   EXPECT_EQ(a.sst.nu_t.cells, b.sst.nu_t.cells);
+  // The VTK output carries the model's fields beside U and p.
+  fv::VtkSeries vtk(tmp.path(), "plate");
+  vtk.write(b.flow);
+  const auto vtu = read_file_text(tmp.path() / "plate_000012.vtu");
+  for (const char* name : {"\"U\"", "\"p\"", "\"k\"", "\"omega\"", "\"nut\""})
+    EXPECT_NE(vtu.find(std::string("Name=") + name), std::string::npos) << name;
   // The same file into a laminar flow: refused, naming what is stored.
   SstPlate c;
   c.flow.set_turbulence(nullptr);

@@ -124,6 +124,8 @@ void VtkSeries::write(const Pimple& flow, const std::map<std::string, const Scal
   for (std::size_t c = 0; c < n; ++c)
     for (const auto& comp : flow.U.c) U.push_back(comp.cells[c]);
   fields["p"] = flow.p.cells;
+  if (const TurbulenceModel* model = flow.turbulence())  // k, omega, nut, ...
+    for (const ScalarField* field : model->fields()) fields[field->name] = field->cells;
   for (const auto& [name, field] : extra) {
     if (field == nullptr || field->cells.size() != n)
       throw std::invalid_argument("VTK output: field '" + name + "' has no value per cell");

@@ -92,9 +92,27 @@ void SstModel::inlet(const std::string& patch) {
   omega.fix(mesh_, patch, settings_.freestream.omega);
 }
 
+void SstModel::start_from(std::vector<double> k0, std::vector<double> omega0) {
+  const auto n = static_cast<std::size_t>(mesh_.cells());
+  require(k0.size() == n && omega0.size() == n,
+          fmt::format("start_from: {} k and {} omega values for {} cells", k0.size(), omega0.size(),
+                      n));
+  for (std::size_t c = 0; c < n; ++c)
+    require(k0[c] >= 0 && omega0[c] > 0 && std::isfinite(k0[c]) && std::isfinite(omega0[c]),
+            fmt::format("start_from: k {} and omega {} in {}", k0[c], omega0[c],
+                        fv::cell_at(mesh_, static_cast<int>(c))));
+  k0_ = std::move(k0);
+  omega0_ = std::move(omega0);
+}
+
 void SstModel::initialise(const fv::VectorField& U, std::span<const double>) {
-  std::fill(k.cells.begin(), k.cells.end(), settings_.freestream.k);
-  std::fill(omega.cells.begin(), omega.cells.end(), settings_.freestream.omega);
+  if (k0_.empty()) {
+    std::fill(k.cells.begin(), k.cells.end(), settings_.freestream.k);
+    std::fill(omega.cells.begin(), omega.cells.end(), settings_.freestream.omega);
+  } else {
+    k.cells = k0_;
+    omega.cells = omega0_;
+  }
   k.update_boundary(mesh_);
   omega.update_boundary(mesh_);
   strain(U);
@@ -302,22 +320,16 @@ fv::TurbulenceReport SstModel::correct(const fv::TurbulenceInput& in) {
   return report;
 }
 
+// The last good state is what a checkpoint stores (state()): one definition of what a step reads.
 void SstModel::save() {
-  good_.k = k;
-  good_.omega = omega;
-  good_.nu_t = nu_t;
-  good_.k_old = k_old_;
-  good_.omega_old = omega_old_;
-  good_.nu_eff = nu_eff_;
+  const auto arrays = state();
+  good_.resize(arrays.size());
+  for (std::size_t i = 0; i < arrays.size(); ++i) good_[i] = *arrays[i];
 }
 
 void SstModel::restore() {
-  k = good_.k;
-  omega = good_.omega;
-  nu_t = good_.nu_t;
-  k_old_ = good_.k_old;
-  omega_old_ = good_.omega_old;
-  nu_eff_ = good_.nu_eff;
+  const auto arrays = state();
+  for (std::size_t i = 0; i < arrays.size(); ++i) *arrays[i] = good_[i];
 }
 
 void SstModel::check() const {

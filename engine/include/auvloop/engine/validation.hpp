@@ -125,12 +125,13 @@ SheddingResult schaefer_turek_2d2(const SheddingCase& c);
 // NASA TMR 2DZP (zero-pressure-gradient flat plate, Re = 5e6 per metre) with SST k-omega,
 // solved steady (SIMPLE) on mesher::flat_plate(spec, level) until Cf(0.97) and the plate drag
 // settle: Cf along the plate, Cf(0.97), CD (reference length 2), the plate's y+ range.
+struct FlatPlateResult;
 struct FlatPlateCase {
   mesher::FlatPlateSpec spec;
   int level = 2;
   int max_iterations = 20000;
   int check_every = 100;    // iterations between convergence checks
-  double tolerance = 1e-5;  // relative change of Cf(0.97) and CD over check_every iterations
+  double tolerance = 1e-5;  // relative change of Cf(0.97) and CD still to come (extrapolated)
   double relax_u = 0.7, relax_p = 0.3, relax_turbulence = 0.7;
   // Linear solves per SIMPLE iteration, |b - A x| <= tol |b|: p, and U, k, omega.
   double pressure_tolerance = 1e-8, transport_tolerance = 1e-6;
@@ -138,6 +139,10 @@ struct FlatPlateCase {
   bool laminar = false;  // no turbulence model (a check of the steady solver itself)
   fv::Convection turbulence_convection = fv::Convection::van_leer_skew;
   turbulence::WallTreatment wall = turbulence::WallTreatment::any_y_plus;
+  // Grid sequencing: the converged solution of the next coarser level (level + 1, same spec) as
+  // the start, each of its cells giving its value to the four it splits into; nullptr: the
+  // free stream.
+  const FlatPlateResult* start = nullptr;
 };
 struct FlatPlateResult {
   int cells = 0, iterations = 0;
@@ -149,6 +154,8 @@ struct FlatPlateResult {
   long limited_cells = 0;                   // in the last iteration
   std::array<double, 4> final_residuals{};  // U, p, k, omega (initial, last iteration)
   double seconds = 0;
+  int level = 0, nx = 0, ny = 0;              // the grid: cell (i, j) is i + nx j
+  std::array<std::vector<double>, 5> fields;  // per cell: u, v, p, k, omega
 };
 FlatPlateResult flat_plate_sst(const FlatPlateCase& c);
 

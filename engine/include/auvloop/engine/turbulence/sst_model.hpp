@@ -83,6 +83,9 @@ class SstModel final : public fv::TurbulenceModel {
 
   // Free-stream k and omega fixed on a patch (an inlet).
   void inlet(const std::string& patch);
+  // Initial cell values for initialise() instead of the free stream (a restart from another
+  // solution, grid sequencing); one per cell each, positive.
+  void start_from(std::vector<double> k0, std::vector<double> omega0);
 
   void initialise(const fv::VectorField& U, std::span<const double> phi) override;
   void begin_step() override;
@@ -127,13 +130,9 @@ class SstModel final : public fv::TurbulenceModel {
   std::vector<int> wall_faces_;              // per wall cell: its wall faces
   std::vector<double> wall_omega_, wall_G_;  // per wall cell
   std::vector<double> S2_, F1_, nu_eff_;
+  std::vector<double> k0_, omega0_;  // start_from()
   std::array<std::vector<double>, 2> k_old_, omega_old_;
-  struct Saved {
-    fv::ScalarField k, omega, nu_t;
-    std::array<std::vector<double>, 2> k_old, omega_old;
-    std::vector<double> nu_eff;
-  };
-  Saved good_;
+  std::vector<std::vector<double>> good_;  // state() at the start of the step
   fv::Matrix eq_;
   std::vector<double> rate_, source_, gamma_;
 };
