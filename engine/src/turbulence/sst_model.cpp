@@ -285,7 +285,16 @@ fv::TurbulenceReport SstModel::correct(const fv::TurbulenceInput& in) {
   rate_.resize(n);
   source_.resize(n);
   // 3. omega.
-  diffusivity([&](std::size_t s) { return blend(c, F1_[s]).sigma_w; });
+  // The blended sigmas per cell once (blend() evaluates gamma1, gamma2 with their square roots;
+  // the face loop would do it twice per face and equation).
+  Scratch<double> sigma_k(n), sigma_w(n);
+  parallel_for(mesh_.cells(), [&](int cell) {
+    const auto s = static_cast<std::size_t>(cell);
+    const auto b = blend(c, F1_[s]);
+    sigma_k[s] = b.sigma_k;
+    sigma_w[s] = b.sigma_w;
+  });
+  diffusivity([&](std::size_t s) { return sigma_w[s]; });
   parallel_for(mesh_.cells(), [&](int cell) {
     const auto s = static_cast<std::size_t>(cell);
     const auto b = blend(c, F1_[s]);
@@ -299,7 +308,7 @@ fv::TurbulenceReport SstModel::correct(const fv::TurbulenceInput& in) {
   solve(omega, "omega equation", settings_.floor * settings_.freestream.omega,
         report.omega_residual, report.omega_iterations);
   // 4. k, with the production of the old nu_t (limited) and the wall cells' from step 2.
-  diffusivity([&](std::size_t s) { return blend(c, F1_[s]).sigma_k; });
+  diffusivity([&](std::size_t s) { return sigma_k[s]; });
   long limited = 0;
   for (std::size_t s = 0; s < n; ++s) {  // serial: counts in cell order
     bool capped = false;
