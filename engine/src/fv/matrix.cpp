@@ -2,6 +2,8 @@
 #include "auvloop/engine/fv/matrix.hpp"
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 
 #include "auvloop/engine/fv/operators.hpp"
 
@@ -133,6 +135,20 @@ void Matrix::fix_values(const Mesh& mesh, std::span<const int> cells,
       (owner ? upper[fs] : lower[fs]) = 0;  // c's own row
     }
     source[c] = diag[c] * v;
+  }
+}
+
+void Matrix::pull_values(std::span<const int> cells, std::span<const double> values,
+                         std::span<const double> weights) {
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    const double w = weights[i];
+    if (!(w >= 0 && w < 1))
+      throw std::invalid_argument("Matrix::pull_values: a weight must be in [0, 1), got " +
+                                  std::to_string(w));
+    const auto c = static_cast<std::size_t>(cells[i]);
+    const double extra = w / (1 - w) * diag[c];
+    diag[c] += extra;
+    source[c] += extra * values[i];
   }
 }
 

@@ -72,6 +72,13 @@ struct Matrix {
   // their rows become diag phi = diag value, and each neighbour takes its coupling to a fixed
   // cell into its source, so the solve returns exactly the values there.
   void fix_values(const Mesh& mesh, std::span<const int> cells, std::span<const double> values);
+  // Draws phi in cells[i] towards values[i] with weight w = weights[i] in [0, 1): row c gains
+  // w / (1 - w) diag_c (phi_c - value), so that at the solution
+  //     phi_c = w value + (1 - w) (source_c - sum_N a_N phi_N) / diag_c,
+  // the weighted mean of the value and of what c's own row gives (w = 0: unchanged; w -> 1:
+  // fix_values). The matrix stays an M-matrix if it was one (only its diagonal grows).
+  void pull_values(std::span<const int> cells, std::span<const double> values,
+                   std::span<const double> weights);
 };
 
 Matrix operator+(Matrix a, const Matrix& b);
