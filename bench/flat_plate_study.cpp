@@ -6,18 +6,22 @@
 //   flat_plate_study --level 2 [--first-height 1e-6] [--plate-cells 256] [--upstream-cells 64]
 //                    [--normal-cells 192] [--max-iterations 20000] [--threads T]
 //                    [--from-level L] (grid sequencing: levels L, L - 1, ..., --level)
+//                    [--wall any-y+|wall-function|resolved]
 //                    [--relax-u 0.7] [--relax-p 0.3] [--relax-turbulence 0.7] [--csv cf.csv]
+//                    [--fields cells.csv]
 //                    [--polymesh CASE_DIR]   (the grid for a peer solver, nothing is run)
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
-
+#include <map>
 #include <optional>
 
 #include <tbb/global_control.h>
 #include <CLI/CLI.hpp>
 
+#include "auvloop/engine/fv/mesh.hpp"
 #include "auvloop/engine/validation.hpp"
+#include "auvloop/mesher/flat_plate_grid.hpp"
 #include "auvloop/mesher/grid_io.hpp"
 
 using namespace auvloop::engine;
@@ -46,10 +50,16 @@ int main(int argc, char** argv) {
   app.add_option("--relax-p", c.relax_p, "pressure under-relaxation")->check(CLI::Range(0.01, 1.0));
   app.add_option("--relax-turbulence", c.relax_turbulence, "k and omega under-relaxation")
       ->check(CLI::Range(0.01, 1.0));
-  bool upwind = false, resolved = false;
-  app.add_flag("--resolved-wall", resolved,
-               "Menter's low-Re wall values (k = 0, omega_w = 60 nu / (beta1 d1^2)) instead of the "
-               "any-y+ treatment");
+  bool upwind = false;
+  const std::map<std::string, turbulence::WallTreatment> walls{
+      {"any-y+", turbulence::WallTreatment::any_y_plus},
+      {"wall-function", turbulence::WallTreatment::wall_function},
+      {"resolved", turbulence::WallTreatment::resolved}};
+  app.add_option("--wall", c.wall,
+                 "wall treatment: any-y+ (blended by y+), wall-function (the first cell's omega "
+                 "fixed, as OpenFOAM's omegaWallFunction) or resolved (the TMR's k = 0, omega_w = "
+                 "60 nu / (beta1 d1^2); y+ < 1)")
+      ->transform(CLI::CheckedTransformer(walls, CLI::ignore_case));
   app.add_flag("--upwind-turbulence", upwind, "first-order upwind convection of k and omega");
   app.add_flag("--laminar", c.laminar, "no turbulence model (checks the steady solver alone)");
   app.add_option("--p-tolerance", c.pressure_tolerance, "pressure solve tolerance (relative)")
@@ -58,6 +68,11 @@ int main(int argc, char** argv) {
                  "U, k and omega solve tolerance (relative)")
       ->check(CLI::PositiveNumber);
   app.add_option("--csv", csv, "write x, Cf of every plate face here");
+  std::string fields;
+  app.add_option(
+      "--fields", fields,
+      "write every cell's i, j, x, y, u, v, p, k, omega here (CSV; cell (i, j) is the i-th "
+      "along the plate, the j-th from the wall)");
   app.add_option("--polymesh", polymesh, "write the grid as an OpenFOAM case's polyMesh and stop");
   int threads = 0, from_level = -1;
   app.add_option("--from-level", from_level,
@@ -70,7 +85,6 @@ int main(int argc, char** argv) {
   if (threads > 0)
     limit.emplace(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
   if (upwind) c.turbulence_convection = fv::Convection::upwind;
-  if (resolved) c.wall = turbulence::WallTreatment::resolved;
   if (!polymesh.empty()) {
     auvloop::mesher::write_openfoam_polymesh(polymesh,
                                              auvloop::mesher::flat_plate(c.spec, c.level));
@@ -104,6 +118,21 @@ int main(int argc, char** argv) {
     std::ofstream out(csv);
     out << "x,cf\n";
     for (std::size_t i = 0; i < r.x.size(); ++i) out << r.x[i] << ',' << r.cf[i] << '\n';
+  }
+  if (!fields.empty()) {
+    const auto grid = auvloop::mesher::flat_plate(c.spec, c.level);
+    const fv::Mesh mesh(grid);
+    std::ofstream out(fields);
+    out << "i,j,x,y,u,v,p,k,omega\n";
+    out.precision(17);
+    for (int j = 0; j < r.ny; ++j)
+      for (int i = 0; i < r.nx; ++i) {
+        const int cell = i + r.nx * j;
+        const auto s = static_cast<std::size_t>(cell);
+        out << i << ',' << j << ',' << mesh.centre(cell).x() << ',' << mesh.centre(cell).y();
+        for (const auto& f : r.fields) out << ',' << f[s];
+        out << '\n';
+      }
   }
   return r.converged ? 0 : 1;
 }

@@ -60,3 +60,8 @@ TEST(FV_SUITE, SchaeferTurek2d2Shedding) {
 TEST(FV_SUITE, FlatPlateSst) {
   run("flat-plate-sst");
 }
+// The any-y+ wall treatment on the plate at first-cell y+ 1 and 30 (quick, about 45 s on one
+// thread) and 1, 5, 30, 100 (full, about 90 s).
+TEST(FV_SUITE, FlatPlateWallFunctions) {
+  run("flat-plate-wall-functions");
+}

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The SST model's coupling to the flow solver, each against something independent of it:
-//   - Matrix::fix_values against the equation solved with the fixed cells as known values;
+//   - Matrix::fix_values against the equation solved with the fixed cells as known values, and
+//     Matrix::pull_values against the relations its solution must satisfy;
 //   - momentum with a face viscosity nu(y) = nu0 (1 + a y) (a stand-in turbulence model) on plane
 //     Couette flow against the exact u(y) = U ln(1 + a y) / ln(1 + a H), second order;
 //   - the SST flat plate bitwise the same on 1, 2 and 3 threads;
@@ -9,6 +10,7 @@
 //   - a checkpoint restart continues bitwise (k, omega and their old levels stored).
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -55,6 +57,47 @@ TEST(MatrixFixValues, GivesTheSolutionWithTheFixedCellsAsKnownValues) {
                                    line(2.5, 7, 5.5, -2, 3.5), line(2.5, 7, 5.5, -2, 4.5), -2,
                                    line(5.5, -2, 8, 3, 6.5),   line(5.5, -2, 8, 3, 7.5)};
   for (std::size_t c = 0; c < 8; ++c) EXPECT_NEAR(phi.cells[c], expect[c], 1e-11) << "cell " << c;
+}
+
+TEST(MatrixPullValues, GivesTheWeightedMeanOfTheValueAndTheRowsOwnSolution) {
+  // The same chain, cell 3 drawn towards 10 with weight w: the cells either side must lie on
+  // straight lines through the wall values and cell 3 (their rows are unchanged), and cell 3
+  // must be w 10 + (1 - w) (phi_2 + phi_4) / 2 (what its diffusion row alone gives); w = 0 is
+  // the plain solution and w -> 1 tends to fix_values.
+  mesher::BoxPatches patches;
+  patches.names = {"left", "right", "bottom", "top", "front", "back"};
+  patches.types = {mesher::PatchType::wall,  mesher::PatchType::wall,  mesher::PatchType::empty,
+                   mesher::PatchType::empty, mesher::PatchType::empty, mesher::PatchType::empty};
+  const auto grid = mesher::cartesian_box(mesher::graded_nodes(0, 8, 8), {0, 1}, {0, 1}, patches);
+  const fv::Mesh mesh(grid);
+  const auto solve = [&](double w) {
+    fv::ScalarField phi(mesh, "phi");
+    phi.fix(mesh, "left", 1.0);
+    phi.fix(mesh, "right", 3.0);
+    phi.update_boundary(mesh);
+    fv::Matrix eq = -fv::laplacian(mesh, 1.0, phi);
+    const std::vector<int> cells{3};
+    const std::vector<double> values{10.0}, weights{w};
+    eq.pull_values(cells, values, weights);
+    fv::LinearSolver solver(mesh, fv::Tolerance(1e-14));
+    solver.solve_asymmetric(eq, phi.cells, fv::AsymmetricMethod::bicgstab_jacobi, 1e-14);
+    return phi.cells;
+  };
+  for (double w : {0.0, 0.3, 0.9}) {
+    const auto phi = solve(w);
+    const double p3 = phi[3];
+    for (int c = 0; c < 3; ++c)  // centres at c + 0.5, the wall at 0, cell 3 at 3.5
+      EXPECT_NEAR(phi[static_cast<std::size_t>(c)], 1 + (p3 - 1) * (c + 0.5) / 3.5, 1e-11);
+    for (int c = 4; c < 8; ++c)
+      EXPECT_NEAR(phi[static_cast<std::size_t>(c)], p3 + (3 - p3) * (c - 3.0) / 4.5, 1e-11);
+    EXPECT_NEAR(p3, w * 10 + (1 - w) * 0.5 * (phi[2] + phi[4]), 1e-11) << "w " << w;
+    if (w == 0) {
+      EXPECT_NEAR(p3, 1 + 2 * 3.5 / 8, 1e-11);  // the straight line from 1 to 3
+    }
+  }
+  EXPECT_NEAR(solve(1 - 1e-9)[3], 10, 1e-7);
+  EXPECT_THROW(solve(1.0), std::invalid_argument);
+  EXPECT_THROW(solve(-0.1), std::invalid_argument);
 }
 
 namespace {
@@ -136,7 +179,8 @@ std::vector<double> plate_cf(int threads, engine::turbulence::WallTreatment wall
 
 TEST(SstThreads, FlatPlateBitwiseIdenticalForOneTwoAndThreeThreads) {
   using engine::turbulence::WallTreatment;
-  for (auto wall : {WallTreatment::any_y_plus, WallTreatment::resolved}) {
+  for (auto wall :
+       {WallTreatment::any_y_plus, WallTreatment::wall_function, WallTreatment::resolved}) {
     const auto one = plate_cf(1, wall);
     EXPECT_EQ(one, plate_cf(2, wall));
     EXPECT_EQ(one, plate_cf(3, wall));

@@ -5,6 +5,7 @@
 // and the friction velocity of a speed made from a known u_tau gives that u_tau back.
 #include <cmath>
 #include <stdexcept>
+#include <tuple>
 
 #include <gtest/gtest.h>
 
@@ -80,5 +81,38 @@ TEST(WallProduction, VanishesInTheSublayerAndIsTheLogLayersInIt) {
     EXPECT_NEAR(law.dy_plus_du_plus(u), (law.y_plus(u + h) - law.y_plus(u - h)) / (2 * h),
                 1e-7 * law.dy_plus_du_plus(u))
         << "u+ " << u;
+  }
+}
+
+TEST(MenterRoughness, IsTheSandGrainWhoseWilcoxWallOmegaIsMentersValue) {
+  // Wilcox (1988): omega_w = u_tau^2 S_R / nu with S_R = (50 / ks+)^2; Menter: 60 nu / (beta1
+  // d1^2). The same value for ks+ = menter_roughness(d1 u_tau / nu), whatever nu and u_tau are.
+  const SstConstants c;
+  for (const auto& [nu, u_tau, d1] :
+       {std::tuple{2e-7, 0.037, 1e-5}, {1e-6, 0.05, 3e-4}, {1.2e-6, 0.08, 2e-3}}) {
+    const double ks = menter_roughness(d1 * u_tau / nu, c);
+    const double wilcox = u_tau * u_tau / nu * (50 / ks) * (50 / ks);
+    EXPECT_NEAR(wilcox / (60 * nu / (c.beta1 * d1 * d1)), 1.0, 1e-12);
+  }
+  EXPECT_NEAR(menter_roughness(1.0, c), 1.7678, 1e-4);
+}
+
+TEST(RoughnessShare, IsZeroWhenSmoothOneWhenFullyRoughAndContinuousBetween) {
+  // Cebeci-Bradshaw's transitional range 2.25 < ks+ < 90: the share leaves 0 and reaches 1 at
+  // its ends (to the published constants' rounding), is sin(pi / 4) at their geometric mean
+  // (the sine's argument is linear in ln ks+), and increases in between.
+  EXPECT_EQ(roughness_share(0.0), 0.0);
+  EXPECT_EQ(roughness_share(2.25), 0.0);
+  EXPECT_LT(roughness_share(2.25 * (1 + 1e-6)), 1e-4);
+  EXPECT_GT(roughness_share(90 * (1 - 1e-6)), 1 - 1e-4);
+  EXPECT_EQ(roughness_share(90.0), 1.0);
+  EXPECT_EQ(roughness_share(1e4), 1.0);
+  EXPECT_NEAR(roughness_share(std::sqrt(2.25 * 90)), std::sqrt(0.5), 1e-3);
+  double last = 0;
+  for (double ks = 2.3; ks < 90; ks *= 1.2) {
+    const double s = roughness_share(ks);
+    EXPECT_GT(s, last) << "ks+ " << ks;
+    EXPECT_LE(s, 1.0);
+    last = s;
   }
 }

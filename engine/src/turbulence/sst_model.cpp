@@ -65,23 +65,29 @@ SstModel::SstModel(const fv::Mesh& mesh, std::vector<double> wall_distance, SstS
         wall_cells_.begin());
     ++wall_faces_[static_cast<std::size_t>(w.cell)];
   }
-  if (settings_.wall == WallTreatment::resolved) {  // Menter's wall values, the TMR's
+  // Menter's wall-face omega (the TMR's) for the wall-resolved and the blended treatments, and
+  // the TMR's k = 0 for the wall-resolved one; the wall-function treatment leaves both zero
+  // gradient (its first cell's omega is fixed).
+  if (settings_.wall != WallTreatment::wall_function) {
     for (const auto& w : walls_) {
       const auto& patch = mesh.grid().patches[static_cast<std::size_t>(w.patch)];
-      auto& kb = k.bcs[static_cast<std::size_t>(w.patch)];
-      auto& wb = omega.bcs[static_cast<std::size_t>(w.patch)];
-      for (auto* bc : {&kb, &wb}) {
-        bc->kind = fv::BcKind::fixed_value;
-        bc->value.resize(static_cast<std::size_t>(patch.size));
-      }
       const auto i = static_cast<std::size_t>(w.face - patch.start);
       const double d1 = 2 * w.y;  // the first cell's height
-      kb.value[i] = 0;
+      auto& wb = omega.bcs[static_cast<std::size_t>(w.patch)];
+      wb.kind = fv::BcKind::fixed_value;
+      wb.value.resize(static_cast<std::size_t>(patch.size));
       wb.value[i] = 10 * 6 * settings_.nu / (settings_.constants.beta1 * d1 * d1);
+      if (settings_.wall == WallTreatment::resolved) {
+        auto& kb = k.bcs[static_cast<std::size_t>(w.patch)];
+        kb.kind = fv::BcKind::fixed_value;
+        kb.value.resize(static_cast<std::size_t>(patch.size));
+        kb.value[i] = 0;
+      }
     }
   }
   wall_omega_.assign(wall_cells_.size(), 0.0);
   wall_G_.assign(wall_cells_.size(), 0.0);
+  wall_weight_.assign(wall_cells_.size(), 0.0);
   S2_.assign(n, 0.0);
   F1_.assign(n, 1.0);
   nu_eff_.assign(static_cast<std::size_t>(mesh.faces()), settings_.nu);
@@ -160,7 +166,7 @@ void SstModel::wall_treatment(const fv::VectorField& U) {
         const double ut = u.norm();
         w.u_tau = settings_.law.friction_velocity(ut, w.y, nu);
         w.y_plus = w.y * w.u_tau / nu;
-        w.nu_t = ut > 0 && settings_.wall == WallTreatment::any_y_plus
+        w.nu_t = ut > 0 && settings_.wall != WallTreatment::resolved
                      ? std::max(0.0, w.u_tau * w.u_tau * w.y / ut - nu)
                      : 0.0;
       },
@@ -168,14 +174,24 @@ void SstModel::wall_treatment(const fv::VectorField& U) {
   // Per wall cell: the mean over its wall faces (in ascending face order).
   std::fill(wall_omega_.begin(), wall_omega_.end(), 0.0);
   std::fill(wall_G_.begin(), wall_G_.end(), 0.0);
+  std::fill(wall_weight_.begin(), wall_weight_.end(), 0.0);
   for (const auto& w : walls_) {
     const auto at = static_cast<std::size_t>(w.cell);
     wall_omega_[at] += wall_omega(w.y, w.u_tau, nu, c);
     wall_G_[at] += wall_production(settings_.law, w.y_plus, w.u_tau, nu);
+    wall_weight_[at] += roughness_share(menter_roughness(2 * w.y_plus, c));  // d1 = 2 y
   }
+  rough_cells_.clear();
+  rough_omega_.clear();
   for (std::size_t j = 0; j < wall_cells_.size(); ++j) {
     wall_omega_[j] /= wall_faces_[j];
     wall_G_[j] /= wall_faces_[j];
+    wall_weight_[j] /= wall_faces_[j];
+    if (wall_weight_[j] >= 1) {  // fully rough: the wall-function value alone (ascending)
+      rough_cells_.push_back(wall_cells_[j]);
+      rough_omega_.push_back(wall_omega_[j]);
+      wall_weight_[j] = 0;
+    }
   }
 }
 
@@ -273,13 +289,16 @@ fv::TurbulenceReport SstModel::correct(const fv::TurbulenceInput& in) {
     });
     residual = stats.initial_residual;
     iterations = stats.iterations;
-    long bounded = 0;
-    for (auto& v : phi_field.cells)  // serial: a count, in cell order
-      if (!(v >= floor)) {
-        v = floor;
-        ++bounded;
-      }
-    report.bounded_cells += bounded;
+    // Counts are sums of integers, exact in any order (and far below 2^53).
+    const auto bounded =
+        fv::parallel_sum<1>(mesh_.cells(), [&](int b, int e, std::array<double, 1>& count) {
+          for (auto s = static_cast<std::size_t>(b); s < static_cast<std::size_t>(e); ++s)
+            if (!(phi_field.cells[s] >= floor)) {
+              phi_field.cells[s] = floor;
+              count[0] += 1;
+            }
+        });
+    report.bounded_cells += static_cast<long>(bounded[0]);
     phi_field.update_boundary(mesh_);
   };
   rate_.resize(n);
@@ -304,23 +323,30 @@ fv::TurbulenceReport SstModel::correct(const fv::TurbulenceInput& in) {
     source_[s] = b.gamma * S2_[s] + (cd > 0 ? cd : 0.0);
   });
   assemble(omega, omega_old_);
-  if (settings_.wall == WallTreatment::any_y_plus) eq_.fix_values(mesh_, wall_cells_, wall_omega_);
+  if (settings_.wall == WallTreatment::wall_function)
+    eq_.fix_values(mesh_, wall_cells_, wall_omega_);
+  else if (settings_.wall == WallTreatment::any_y_plus) {
+    eq_.pull_values(wall_cells_, wall_omega_, wall_weight_);
+    eq_.fix_values(mesh_, rough_cells_, rough_omega_);
+  }
   solve(omega, "omega equation", settings_.floor * settings_.freestream.omega,
         report.omega_residual, report.omega_iterations);
   // 4. k, with the production of the old nu_t (limited) and the wall cells' from step 2.
   diffusivity([&](std::size_t s) { return sigma_k[s]; });
-  long limited = 0;
-  for (std::size_t s = 0; s < n; ++s) {  // serial: counts in cell order
-    bool capped = false;
-    source_[s] =
-        production(c, nu_t.cells[s], std::sqrt(S2_[s]), k.cells[s], omega.cells[s], &capped);
-    limited += capped ? 1 : 0;
-    rate_[s] = c.beta_star * omega.cells[s];
-  }
-  if (settings_.wall == WallTreatment::any_y_plus)
+  const auto limited =
+      fv::parallel_sum<1>(mesh_.cells(), [&](int b, int e, std::array<double, 1>& count) {
+        for (auto s = static_cast<std::size_t>(b); s < static_cast<std::size_t>(e); ++s) {
+          bool capped = false;
+          source_[s] =
+              production(c, nu_t.cells[s], std::sqrt(S2_[s]), k.cells[s], omega.cells[s], &capped);
+          count[0] += capped ? 1 : 0;
+          rate_[s] = c.beta_star * omega.cells[s];
+        }
+      });
+  if (settings_.wall != WallTreatment::resolved)
     for (std::size_t j = 0; j < wall_cells_.size(); ++j)
       source_[static_cast<std::size_t>(wall_cells_[j])] = wall_G_[j];
-  report.limited_cells = limited;
+  report.limited_cells = static_cast<long>(limited[0]);
   assemble(k, k_old_);
   solve(k, "k equation", settings_.floor * settings_.freestream.k, report.k_residual,
         report.k_iterations);
@@ -342,10 +368,18 @@ void SstModel::restore() {
 }
 
 void SstModel::check() const {
-  for (int cell = 0; cell < mesh_.cells(); ++cell) {
+  const auto finite = [&](std::size_t s) {
+    return std::isfinite(k.cells[s]) && std::isfinite(omega.cells[s]) &&
+           std::isfinite(nu_t.cells[s]);
+  };
+  const auto bad = fv::parallel_sum<1>(mesh_.cells(), [&](int b, int e, auto& count) {
+    for (auto s = static_cast<std::size_t>(b); s < static_cast<std::size_t>(e); ++s)
+      count[0] += finite(s) ? 0 : 1;
+  });
+  if (bad[0] == 0) return;
+  for (int cell = 0; cell < mesh_.cells(); ++cell) {  // the first one, to name it
     const auto s = static_cast<std::size_t>(cell);
-    if (!std::isfinite(k.cells[s]) || !std::isfinite(omega.cells[s]) ||
-        !std::isfinite(nu_t.cells[s]))
+    if (!finite(s))
       throw std::runtime_error(
           fmt::format("non-finite k, omega or nu_t (k = {:.3g}, omega = {:.3g}) in {}", k.cells[s],
                       omega.cells[s], fv::cell_at(mesh_, cell)));

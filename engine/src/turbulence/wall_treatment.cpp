@@ -3,6 +3,7 @@
 // auvloop/engine/turbulence/wall_treatment.hpp.
 #include "auvloop/engine/turbulence/wall_treatment.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -68,6 +69,18 @@ double LawOfTheWall::friction_velocity(double U, double y, double nu) const {
 double wall_production(const LawOfTheWall& law, double y_plus, double u_tau, double nu) {
   const double slope = 1 / law.dy_plus_du_plus(law.u_plus(y_plus));  // du+/dy+
   return u_tau * u_tau * u_tau * u_tau / nu * (1 - slope) * slope;
+}
+
+double menter_roughness(double d1_plus, const SstConstants& c) {
+  // 60 nu / (beta1 d1^2) = (u_tau^2 / nu) (50 / ks+)^2  <=>  ks+ = 50 d1+ sqrt(beta1 / 60).
+  return 50 * std::sqrt(c.beta1 / 60) * d1_plus;
+}
+
+double roughness_share(double ks_plus) {
+  if (!(ks_plus > 2.25)) return 0;  // hydraulically smooth (NaN too: no roughness)
+  if (ks_plus >= 90) return 1;      // fully rough
+  // The published constants put the sine's zero at ks+ = 2.2502 and its maximum at 89.99: clamped.
+  return std::clamp(std::sin(0.4258 * (std::log(ks_plus) - 0.811)), 0.0, 1.0);
 }
 
 double wall_omega(double y, double u_tau, double nu, const SstConstants& c) {

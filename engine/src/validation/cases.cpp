@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <tuple>
 
 #include <fmt/format.h>
 
@@ -283,6 +284,54 @@ Result run_flat_plate_sst(bool quick) {
   res.rows.push_back(relative("CD finest vs CFL3D 545x385", fine.cd, 0.00285332, 0.015));
   return res;
 }
+
+// The same plate on grids whose first cell sits at y+ of about 1, 5, 30 and 100 at x = 0.97
+// (128 cells along the plate, 32 ahead of it, 64 or 48 wall-normal; the first height H sets y+),
+// with the any-y+ wall treatment: Cf(0.97) and CD against the converged y+ < 1 value (CFL3D on
+// the TMR's finest grid), within 3 % (6 % at y+ 5, the buffer layer; issue 16). Quick: the y+ 1
+// and y+ 30 grids (the sublayer and the log-layer ends of the treatment), the same tolerances.
+Result run_flat_plate_wall_functions(bool quick) {
+  Result res{"flat-plate-wall-functions", {}, {}};
+  struct Grid {
+    double y_plus, first_height;
+    int normal_cells;
+    double tolerance;
+  };
+  std::vector<Grid> grids{{1, 1.1e-5, 64, 0.03},
+                          {5, 5.5e-5, 64, 0.06},
+                          {30, 3.3e-4, 48, 0.03},
+                          {100, 1.1e-3, 48, 0.03}};
+  if (quick) grids = {grids[0], grids[2]};
+  for (const auto& g : grids) {
+    FlatPlateCase c;
+    c.level = 0;
+    c.spec.plate_cells = 128;
+    c.spec.upstream_cells = 32;
+    c.spec.normal_cells = g.normal_cells;
+    c.spec.first_height = g.first_height;
+    c.wall = turbulence::WallTreatment::any_y_plus;
+    const auto x = flat_plate_sst(c);
+    res.notes.push_back(fmt::format(
+        "y+ {:g} grid ({} cells, first height {:g} m): Cf(0.97) {:.6f}, CD {:.6f}, plate y+ "
+        "{:.3g}-{:.3g} (mean {:.3g}), {} SIMPLE iterations{}, {:.1f} s",
+        g.y_plus, x.cells, g.first_height, x.cf_097, x.cd, x.y_plus.min, x.y_plus.max,
+        x.y_plus.mean, x.iterations, x.converged ? "" : " (NOT converged)", x.seconds));
+    res.rows.push_back(Row{fmt::format("y+ {:g} converged", g.y_plus), x.converged ? 1.0 : 0.0, 1.0,
+                           x.converged ? 0.0 : 1.0, 0.0, x.converged});
+    for (auto [name, v, ref] :
+         {std::tuple{"Cf(0.97)", x.cf_097, 0.00269085}, std::tuple{"CD", x.cd, 0.00285332}}) {
+      Row row{fmt::format("{} y+ {:g} vs CFL3D 545x385", name, g.y_plus),
+              v,
+              ref,
+              std::abs(v / ref - 1),
+              g.tolerance,
+              false};
+      row.pass = row.error <= row.tolerance;
+      res.rows.push_back(row);
+    }
+  }
+  return res;
+}
 }  // namespace
 
 const std::vector<Case>& cases() {
@@ -305,6 +354,10 @@ const std::vector<Case>& cases() {
       {"flat-plate-sst",
        "NASA TMR zero-pressure-gradient flat plate, SST k-omega: Cf(0.97) and CD against CFL3D",
        run_flat_plate_sst},
+      {"flat-plate-wall-functions",
+       "the TMR flat plate on grids with first-cell y+ of 1, 5, 30 and 100: the any-y+ wall "
+       "treatment's Cf(0.97) and CD against the y+ < 1 value",
+       run_flat_plate_wall_functions},
   };
   return all;
 }

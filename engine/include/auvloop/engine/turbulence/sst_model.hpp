@@ -16,8 +16,9 @@
 //   1. the cell gradients of U, k and omega; S^2 per cell; F1 with the current k, omega;
 //   2. the wall treatment per wall face f with first cell P: the wall-parallel speed U_t of P
 //      relative to the wall at the face-normal distance y of its centre, u_tau from Spalding's
-//      law, y+ = y u_tau / nu; the first cell's omega fixed to wall_omega(y, u_tau) and its k
-//      production set to wall_production(y+, u_tau) (averaged over a cell's wall faces);
+//      law, y+ = y u_tau / nu; the first cell's target omega wall_omega(y, u_tau), its weight
+//      roughness_share(menter_roughness(2 y+)) and its k production wall_production(y+, u_tau)
+//      (each averaged over the cell's wall faces; how they enter: WallTreatment below);
 //   3. the omega equation (bounded TVD convection, implicit destruction, the cross-diffusion
 //      term explicit where it is positive and implicit where it is negative), under-relaxed in
 //      all but the final outer iteration (every iteration when steady), solved, bounded below;
@@ -45,10 +46,22 @@
 
 namespace auvloop::engine::turbulence {
 
-// How walls are treated: `any_y_plus` (the default) as above; `resolved`, Menter's low-Re wall
-// values as the TMR prescribes them, k = 0 and omega = 10 * 6 nu / (beta1 d1^2) on the wall face
-// (d1 the first cell's height) with a no-slip wall flux: only for y+ below about 1.
-enum class WallTreatment { any_y_plus, resolved };
+// How walls are treated (step 2 and the wall rows of steps 3-5):
+// - `any_y_plus` (the default): Menter's wall-face omega = 10 * 6 nu / (beta1 d1^2) (d1 the first
+//   cell's height) is always set, and the first cell's omega is drawn towards the wall-function
+//   value wall_omega(y, u_tau) with the weight w = roughness_share(menter_roughness(d1+))
+//   (Matrix::pull_values; wall_treatment.hpp): Menter's value amounts to a sand-grain roughness
+//   ks+ = 1.768 d1+, so where it is hydraulically smooth (ks+ <= 2.25, y+ below about 0.64) the
+//   first cell keeps its own equation (the TMR's treatment), where it would be fully rough (ks+
+//   >= 90, y+ above about 25) the wall-function value is fixed, and in between the weight is the
+//   share of the roughness' effect the wall-function value takes away; k zero gradient, the wall
+//   production and nu_t,w from the law of the wall;
+// - `wall_function`: the first cell's omega fixed to wall_omega(y, u_tau) at every y+ (OpenFOAM's
+//   omegaWallFunction), otherwise as any_y_plus (k zero gradient, production and nu_t,w from the
+//   law); accurate from y+ of about 5 (the peer comparison uses it);
+// - `resolved`: the TMR's wall values, k = 0 and Menter's omega on the wall face, no-slip wall
+//   flux and the model's own production: only for y+ below about 1.
+enum class WallTreatment { any_y_plus, wall_function, resolved };
 
 struct SstSettings {
   SstConstants constants;
@@ -129,6 +142,9 @@ class SstModel final : public fv::TurbulenceModel {
   std::vector<int> wall_cells_;              // ascending, each once
   std::vector<int> wall_faces_;              // per wall cell: its wall faces
   std::vector<double> wall_omega_, wall_G_;  // per wall cell
+  std::vector<double> wall_weight_;          // per wall cell: the pull (0 where fixed)
+  std::vector<int> rough_cells_;             // wall cells whose weight is 1, ascending
+  std::vector<double> rough_omega_;          // their omega
   std::vector<double> S2_, F1_, nu_eff_;
   std::vector<double> k0_, omega0_;  // start_from()
   std::array<std::vector<double>, 2> k_old_, omega_old_;

@@ -17,6 +17,13 @@
 //   omega at the first cell: the viscous-sublayer value 6 nu / (beta1 y^2) and the log-layer value
 //   u_tau / (sqrt(beta*) kappa y) blended as sqrt(omega_vis^2 + omega_log^2) (as OpenFOAM's
 //   omegaWallFunction blends them), so each dominates where it holds.
+//   Menter's wall-face omega 60 nu / (beta1 d1^2) (d1 the first cell's height), read as a rough
+//   wall: Wilcox's rough-wall value omega_w = u_tau^2 S_R / nu with S_R = (50 / ks+)^2 (Wilcox
+//   1988, calibrated for the k-omega model with beta = 3/40, which is SST's inner layer) equals
+//   it for the sand-grain roughness ks+ = sqrt(2500 beta1 / 60) d1+ = 1.768 d1+: smooth only
+//   while the first cell is thin. The share of a roughness' effect (Cebeci and Bradshaw 1977,
+//   on Nikuradse's sand grains): 0 for ks+ <= 2.25 (hydraulically smooth), sin(0.4258 (ln ks+ -
+//   0.811)) in the transitional range, 1 from ks+ = 90 (fully rough).
 #pragma once
 
 #include "auvloop/engine/turbulence/sst.hpp"
@@ -39,6 +46,13 @@ struct LawOfTheWall {
 
 // The first cell's k production (m^2/s^3) at y+ (above), friction velocity u_tau.
 double wall_production(const LawOfTheWall& law, double y_plus, double u_tau, double nu);
+
+// The sand-grain roughness ks+ that Menter's wall-face omega amounts to on a first cell of
+// height d1+ = d1 u_tau / nu (above).
+double menter_roughness(double d1_plus, const SstConstants& c = {});
+
+// The share in [0, 1] of a sand-grain roughness ks+'s effect on the wall (Cebeci-Bradshaw, above).
+double roughness_share(double ks_plus);
 
 // The first cell's omega (1/s) at wall distance y with friction velocity u_tau, with the model's
 // beta1, beta* and kappa.
