@@ -4,6 +4,8 @@
 //     Matrix::pull_values against the relations its solution must satisfy;
 //   - momentum with a face viscosity nu(y) = nu0 (1 + a y) (a stand-in turbulence model) on plane
 //     Couette flow against the exact u(y) = U ln(1 + a y) / ln(1 + a H), second order;
+//   - Matrix::scale_rows: the same solution, and a relative stopping test that holds in a
+//     system spanning six decades (the SST solves' row scaling);
 //   - the SST flat plate bitwise the same on 1, 2 and 3 threads;
 //   - a non-finite omega is diagnosed as a divergence naming the equation and the cell, with
 //     the last good k and omega kept;
@@ -15,6 +17,7 @@
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
+#include <Eigen/Dense>
 
 #include "auvloop/engine/fv/output.hpp"
 #include "auvloop/engine/fv/pimple.hpp"
@@ -98,6 +101,68 @@ TEST(MatrixPullValues, GivesTheWeightedMeanOfTheValueAndTheRowsOwnSolution) {
   EXPECT_NEAR(solve(1 - 1e-9)[3], 10, 1e-7);
   EXPECT_THROW(solve(1.0), std::invalid_argument);
   EXPECT_THROW(solve(-0.1), std::invalid_argument);
+}
+
+TEST(MatrixScaleRows, KeepsTheSolutionAndMakesTheStoppingTestHoldInEveryCell) {
+  // -phi'' + a^2 phi = 0 on 32 cells with phi = 1e6 and 1 at the ends (six decades, as omega
+  // from a wall cell to the free stream), started from the solution with its small half doubled.
+  // Unscaled, |b| is the large end's and a relative tolerance of 1e-6 is met at once, leaving
+  // the small half 100 % off; with each row divided by diag_c max(phi_c, floor) the same
+  // tolerance gives every cell to 1e-4 of the tight solution, which scaling does not change.
+  mesher::BoxPatches patches;
+  patches.names = {"left", "right", "bottom", "top", "front", "back"};
+  patches.types = {mesher::PatchType::wall,  mesher::PatchType::wall,  mesher::PatchType::empty,
+                   mesher::PatchType::empty, mesher::PatchType::empty, mesher::PatchType::empty};
+  const int n = 32;
+  const auto grid = mesher::cartesian_box(mesher::graded_nodes(0, n, n), {0, 1}, {0, 1}, patches);
+  const fv::Mesh mesh(grid);
+  fv::ScalarField phi(mesh, "phi");
+  phi.fix(mesh, "left", 1e6);
+  phi.fix(mesh, "right", 1.0);
+  phi.update_boundary(mesh);
+  const std::vector<double> rate(static_cast<std::size_t>(n), std::pow(std::log(1e6) / n, 2));
+  const auto equation = [&] {
+    return fv::Matrix(-fv::laplacian(mesh, 1.0, phi) + fv::Sp(mesh, rate));
+  };
+  fv::LinearSolver solver(mesh, fv::Tolerance(1e-14));
+  const auto solve = [&](fv::Matrix eq, std::vector<double> x, double tol, bool scaled) {
+    if (scaled) {
+      std::vector<double> f(x.size());
+      for (std::size_t c = 0; c < x.size(); ++c) f[c] = 1 / (eq.diag[c] * std::max(x[c], 1e-30));
+      eq.scale_rows(mesh, f);
+    }
+    solver.solve_asymmetric(eq, x, fv::AsymmetricMethod::bicgstab_jacobi, tol);
+    return x;
+  };
+  // The reference: the same equations by a dense LU (Eigen), no stopping test involved.
+  const auto eq = equation();
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, n);
+  Eigen::VectorXd b(n);
+  for (int c = 0; c < n; ++c) {
+    A(c, c) = eq.diag[static_cast<std::size_t>(c)];
+    b(c) = eq.source[static_cast<std::size_t>(c)];
+  }
+  for (int f = 0; f < mesh.internal_faces(); ++f) {
+    A(mesh.owner(f), mesh.neighbour(f)) = eq.upper[static_cast<std::size_t>(f)];
+    A(mesh.neighbour(f), mesh.owner(f)) = eq.lower[static_cast<std::size_t>(f)];
+  }
+  const Eigen::VectorXd lu = A.partialPivLu().solve(b);
+  const std::vector<double> exact(lu.data(), lu.data() + n);
+  ASSERT_GT(exact.front() / exact.back(), 1e4);
+  std::vector<double> start = exact;
+  for (std::size_t c = n / 2; c < start.size(); ++c) start[c] *= 2;
+  const auto scaled_exact = solve(equation(), start, 1e-14, true);
+  const auto plain = solve(equation(), start, 1e-6, false);
+  const auto scaled = solve(equation(), start, 1e-6, true);
+  double plain_worst = 0, scaled_worst = 0, same = 0;
+  for (std::size_t c = 0; c < exact.size(); ++c) {
+    plain_worst = std::max(plain_worst, std::abs(plain[c] / exact[c] - 1));
+    scaled_worst = std::max(scaled_worst, std::abs(scaled[c] / exact[c] - 1));
+    same = std::max(same, std::abs(scaled_exact[c] / exact[c] - 1));
+  }
+  EXPECT_LT(same, 1e-11);
+  EXPECT_GT(plain_worst, 0.1);  // the unscaled stopping test is blind to the small half
+  EXPECT_LT(scaled_worst, 1e-4);
 }
 
 namespace {

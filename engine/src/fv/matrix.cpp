@@ -112,6 +112,19 @@ void Matrix::relax(std::span<const double> x_prev, double alpha) {
   });
 }
 
+void Matrix::scale_rows(const Mesh& mesh, std::span<const double> factor) {
+  parallel_for(static_cast<int>(diag.size()), [&](int i) {
+    const auto c = static_cast<std::size_t>(i);
+    diag[c] *= factor[c];
+    source[c] *= factor[c];
+  });
+  parallel_for(mesh.internal_faces(), [&](int f) {
+    const auto fs = static_cast<std::size_t>(f);
+    upper[fs] *= factor[static_cast<std::size_t>(mesh.owner(f))];      // row owner
+    lower[fs] *= factor[static_cast<std::size_t>(mesh.neighbour(f))];  // row neighbour
+  });
+}
+
 void Matrix::fix_values(const Mesh& mesh, std::span<const int> cells,
                         std::span<const double> values) {
   // Serial over the fixed cells (a wall's first cells: a small set); each fixed cell's row and

@@ -10,7 +10,16 @@
 //      `tolerance` (relative);
 //   3. the wall shear of every plate face, tau_w = (nu + nu_t,w) U_t / y (the momentum
 //      equation's discrete wall flux), Cf = tau_w / (U^2 / 2); Cf(0.97) linear between face
-//      centres; CD = the integral of Cf over the plate / 2 (the TMR's reference length 2).
+//      centres; CD = the integral of Cf over the plate / 2 (the TMR's reference length 2);
+//   4. the free stream against its analytic decay (the TMR's): along the top row of cells, far
+//      from the plate (F1 = 0, no production, diffusion and cross-diffusion negligible),
+//      U d omega/dx = -beta2 omega^2 and U dk/dx = -beta* k omega, so with X = x - x_inlet
+//          omega = omega_in / (1 + beta2 omega_in X / U),  k = k_in (1 + beta2 omega_in X /
+//          U)^(-beta*/beta2);
+//      the largest relative error from x = 0.2 to the outlet (a free stream the solves leave
+//      frozen shows tens of per cent), and the streamwise size of the outlet cell, which sets it
+//      (first order: validation/cases.cpp).
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -178,6 +187,26 @@ FlatPlateResult flat_plate_sst(const FlatPlateCase& c) {
   r.nx = nx;
   r.ny = ny;
   r.fields = {flow.U.c[0].cells, flow.U.c[1].cells, flow.p.cells, sst.k.cells, sst.omega.cells};
+  // 4.
+  if (!c.laminar) {
+    const auto& sc = ts.constants;
+    r.outlet_dx = 2 * (c.spec.plate_length - mesh.centre(nx * ny - 1).x());
+    for (int i = 0; i < nx; ++i) {
+      const int cell = i + nx * (ny - 1);
+      const double x = mesh.centre(cell).x();
+      if (x < 0.2) continue;
+      const double decay = 1 + sc.beta2 * ts.freestream.omega * (x + c.spec.upstream) / U_inf;
+      const auto s_cell = static_cast<std::size_t>(cell);
+      r.freestream_omega_error =
+          std::max(r.freestream_omega_error,
+                   std::abs(sst.omega.cells[s_cell] * decay / ts.freestream.omega - 1));
+      r.freestream_k_error =
+          std::max(r.freestream_k_error,
+                   std::abs(sst.k.cells[s_cell] /
+                                (ts.freestream.k * std::pow(decay, -sc.beta_star / sc.beta2)) -
+                            1));
+    }
+  }
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }

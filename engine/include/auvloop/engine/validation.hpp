@@ -156,6 +156,9 @@ struct FlatPlateResult {
   double seconds = 0;
   int level = 0, nx = 0, ny = 0;              // the grid: cell (i, j) is i + nx j
   std::array<std::vector<double>, 5> fields;  // per cell: u, v, p, k, omega
+  // The top row's largest relative error against the free stream's analytic decay, x >= 0.2.
+  double freestream_omega_error = 0, freestream_k_error = 0;
+  double outlet_dx = 0;  // m, the streamwise size of the outlet cells
 };
 FlatPlateResult flat_plate_sst(const FlatPlateCase& c);
 

@@ -68,6 +68,10 @@ struct Matrix {
   void h_operator(const Mesh& mesh, std::span<const double> x, std::span<double> h) const;
   // Implicit under-relaxation (Patankar): diag / alpha, source + (1 - alpha) / alpha diag x_prev.
   void relax(std::span<const double> x_prev, double alpha);
+  // Multiplies row c (its diagonal, its off-diagonals and its source) by factor[c] > 0: the same
+  // solution, and the same iterates for Gauss-Seidel and Jacobi-preconditioned Krylov methods
+  // (both invariant under row scaling); only a residual-based stopping test changes.
+  void scale_rows(const Mesh& mesh, std::span<const double> factor);
   // Fixes phi = values[i] in cells[i] (OpenFOAM's setValues; the cells ascending, each once):
   // their rows become diag phi = diag value, and each neighbour takes its coupling to a fixed
   // cell into its source, so the solve returns exactly the values there.
