@@ -32,15 +32,23 @@
 using namespace auvloop;
 namespace fv = engine::fv;
 
-TEST(MatrixFixValues, GivesTheSolutionWithTheFixedCellsAsKnownValues) {
-  // 1D diffusion on 8 cells, phi = 1 and 3 fixed at both ends by boundary values; cells 2 and
-  // 5 fixed to 7 and -2: the cells between must follow the straight lines between the fixed
-  // values, which the rest of the chain then sees as its end values.
+namespace {
+// n unit cells in a row between two walls "left" and "right" (one cell deep: the other patches
+// empty), a 1D chain for the matrix tests.
+mesher::Grid chain(int n) {
   mesher::BoxPatches patches;
   patches.names = {"left", "right", "bottom", "top", "front", "back"};
   patches.types = {mesher::PatchType::wall,  mesher::PatchType::wall,  mesher::PatchType::empty,
                    mesher::PatchType::empty, mesher::PatchType::empty, mesher::PatchType::empty};
-  const auto grid = mesher::cartesian_box(mesher::graded_nodes(0, 8, 8), {0, 1}, {0, 1}, patches);
+  return mesher::cartesian_box(mesher::graded_nodes(0, n, n), {0, 1}, {0, 1}, patches);
+}
+}  // namespace
+
+TEST(MatrixFixValues, GivesTheSolutionWithTheFixedCellsAsKnownValues) {
+  // 1D diffusion on 8 cells, phi = 1 and 3 fixed at both ends by boundary values; cells 2 and
+  // 5 fixed to 7 and -2: the cells between must follow the straight lines between the fixed
+  // values, which the rest of the chain then sees as its end values.
+  const auto grid = chain(8);
   const fv::Mesh mesh(grid);
   fv::ScalarField phi(mesh, "phi");
   phi.fix(mesh, "left", 1.0);
@@ -67,11 +75,7 @@ TEST(MatrixPullValues, GivesTheWeightedMeanOfTheValueAndTheRowsOwnSolution) {
   // straight lines through the wall values and cell 3 (their rows are unchanged), and cell 3
   // must be w 10 + (1 - w) (phi_2 + phi_4) / 2 (what its diffusion row alone gives); w = 0 is
   // the plain solution and w -> 1 tends to fix_values.
-  mesher::BoxPatches patches;
-  patches.names = {"left", "right", "bottom", "top", "front", "back"};
-  patches.types = {mesher::PatchType::wall,  mesher::PatchType::wall,  mesher::PatchType::empty,
-                   mesher::PatchType::empty, mesher::PatchType::empty, mesher::PatchType::empty};
-  const auto grid = mesher::cartesian_box(mesher::graded_nodes(0, 8, 8), {0, 1}, {0, 1}, patches);
+  const auto grid = chain(8);
   const fv::Mesh mesh(grid);
   const auto solve = [&](double w) {
     fv::ScalarField phi(mesh, "phi");
@@ -109,12 +113,8 @@ TEST(MatrixScaleRows, KeepsTheSolutionAndMakesTheStoppingTestHoldInEveryCell) {
   // Unscaled, |b| is the large end's and a relative tolerance of 1e-6 is met at once, leaving
   // the small half 100 % off; with each row divided by diag_c max(phi_c, floor) the same
   // tolerance gives every cell to 1e-4 of the tight solution, which scaling does not change.
-  mesher::BoxPatches patches;
-  patches.names = {"left", "right", "bottom", "top", "front", "back"};
-  patches.types = {mesher::PatchType::wall,  mesher::PatchType::wall,  mesher::PatchType::empty,
-                   mesher::PatchType::empty, mesher::PatchType::empty, mesher::PatchType::empty};
   const int n = 32;
-  const auto grid = mesher::cartesian_box(mesher::graded_nodes(0, n, n), {0, 1}, {0, 1}, patches);
+  const auto grid = chain(n);
   const fv::Mesh mesh(grid);
   fv::ScalarField phi(mesh, "phi");
   phi.fix(mesh, "left", 1e6);
