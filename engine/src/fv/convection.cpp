@@ -4,6 +4,7 @@
 // stays an M-matrix and the converged solution is the scheme's.
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -81,8 +82,13 @@ void ConvectionTerm::add_to(Matrix& eq, double sign) const {
   const Mesh& mesh = *m;
   const ScalarField& field = *phi;
   const auto n = static_cast<std::size_t>(mesh.cells());
-  Scratch<Eigen::Vector3d> g(scheme != Convection::upwind ? n : 0);
-  if (scheme != Convection::upwind) mesh.gradient(field.cells, field.boundary, *g);
+  const bool own_gradient = scheme != Convection::upwind && grad.empty();
+  Scratch<Eigen::Vector3d> computed(own_gradient ? n : 0);
+  if (own_gradient) mesh.gradient(field.cells, field.boundary, *computed);
+  const std::span<const Eigen::Vector3d> g =
+      own_gradient ? std::span<const Eigen::Vector3d>(*computed) : grad;
+  if (scheme != Convection::upwind && g.size() != n)
+    throw std::invalid_argument("div(phi): a supplied gradient needs one vector per cell");
   const auto& v = field.cells;
   const bool ranged = scheme == Convection::van_leer_skew;
   Scratch<std::pair<double, double>> range(ranged ? n : 0);

@@ -257,14 +257,16 @@ fv::TurbulenceReport SstModel::correct(const fv::TurbulenceInput& in) {
       gamma_[fs] = nu + sigma_nut;
     });
   };
+  // grad: phi_field's gradient from step 1 (neither field changes before its own solve).
   const auto assemble = [&](fv::ScalarField& phi_field,
-                            const std::array<std::vector<double>, 2>& old) {
+                            const std::array<std::vector<double>, 2>& old,
+                            std::span<const Eigen::Vector3d> grad) {
+    const auto convection = fv::div(mesh_, in.phi, phi_field, settings_.convection, grad);
     if (in.steady) {
-      eq_ = fv::div(mesh_, in.phi, phi_field, settings_.convection) - fv::Sp(mesh_, *div_phi) -
-            fv::laplacian(mesh_, gamma_, phi_field) + fv::Sp(mesh_, rate_);
+      eq_ = convection - fv::Sp(mesh_, *div_phi) - fv::laplacian(mesh_, gamma_, phi_field) +
+            fv::Sp(mesh_, rate_);
     } else {
-      eq_ = fv::ddt(mesh_, in.time, old[0], old[1]) +
-            fv::div(mesh_, in.phi, phi_field, settings_.convection) - fv::Sp(mesh_, *div_phi) -
+      eq_ = fv::ddt(mesh_, in.time, old[0], old[1]) + convection - fv::Sp(mesh_, *div_phi) -
             fv::laplacian(mesh_, gamma_, phi_field) + fv::Sp(mesh_, rate_);
     }
     eq_.add_rhs(mesh_, source_);
@@ -334,7 +336,7 @@ fv::TurbulenceReport SstModel::correct(const fv::TurbulenceInput& in) {
     rate_[s] = b.beta * w + (cd < 0 ? -cd / w : 0.0);
     source_[s] = b.gamma * S2_[s] + (cd > 0 ? cd : 0.0);
   });
-  assemble(omega, omega_old_);
+  assemble(omega, omega_old_, *gw);
   if (settings_.wall == WallTreatment::wall_function)
     eq_.fix_values(mesh_, wall_cells_, wall_omega_);
   else if (settings_.wall == WallTreatment::any_y_plus) {
@@ -359,7 +361,7 @@ fv::TurbulenceReport SstModel::correct(const fv::TurbulenceInput& in) {
     for (std::size_t j = 0; j < wall_cells_.size(); ++j)
       source_[static_cast<std::size_t>(wall_cells_[j])] = wall_G_[j];
   report.limited_cells = static_cast<long>(limited[0]);
-  assemble(k, k_old_);
+  assemble(k, k_old_, *gk);
   solve(k, "k equation", settings_.floor * settings_.freestream.k, report.k_residual,
         report.k_iterations);
   // 5. nu_t and the effective viscosity.

@@ -67,12 +67,19 @@ struct ConvectionTerm {
   std::span<const double> flux;
   const ScalarField* phi;
   Convection scheme;
+  std::span<const Eigen::Vector3d> grad;  // phi's cell gradient if already computed, or empty
   [[nodiscard]] const Mesh& mesh() const { return *m; }
   void add_to(Matrix& eq, double sign) const;
 };
 inline ConvectionTerm div(const Mesh& mesh, std::span<const double> flux, const ScalarField& phi,
                           Convection scheme) {
-  return {&mesh, flux, &phi, scheme};
+  return {&mesh, flux, &phi, scheme, {}};
+}
+// The same with phi's cell gradient (Mesh::gradient of its current values) supplied, as when the
+// caller needs it anyway: the scheme's deferred correction then does not compute it again.
+inline ConvectionTerm div(const Mesh& mesh, std::span<const double> flux, const ScalarField& phi,
+                          Convection scheme, std::span<const Eigen::Vector3d> grad) {
+  return {&mesh, flux, &phi, scheme, grad};
 }
 
 // Time derivative: (c0 phi + c1 phi_old + c2 phi_oldold) / dt, BDF2 or Euler (1, -1, 0) for the
