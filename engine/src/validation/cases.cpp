@@ -231,6 +231,19 @@ Result run_schaefer_turek_2d2(bool quick) {
   res.rows.push_back(interval_row("cL max", r.cl_max, 0.99, 1.01));
   return res;
 }
+// |value / reference - 1| within tolerance.
+Row relative_to(std::string quantity, double value, double reference, double tolerance) {
+  Row row{std::move(quantity), value, reference, std::abs(value / reference - 1), tolerance, false};
+  row.pass = row.error <= tolerance;
+  return row;
+}
+
+// A steady run that reached its stopping test (a row, so that a run that did not fails).
+Row converged_row(const std::string& grid, const FlatPlateResult& x) {
+  return Row{grid + " converged", x.converged ? 1.0 : 0.0, 1.0, x.converged ? 0.0 : 1.0, 0.0,
+             x.converged};
+}
+
 // The free stream's omega and k against their analytic decay (flat_plate.cpp, step 4). The
 // error is first order in the outlet cell's streamwise size dx (largest there): measured e / dx
 // = 0.20 / m for omega and 0.23 / m for k on levels 2 and 1 and on the wall-function grids
@@ -270,24 +283,13 @@ Result run_flat_plate_sst(bool quick) {
         "iterations{}, {} cells bounded, {:.1f} s",
         level, x.cells, x.cf_097, x.cd, x.y_plus.min, x.y_plus.max, x.iterations,
         x.converged ? "" : " (NOT converged)", x.bounded_cells, x.seconds));
-    Row conv{fmt::format("level {} converged", level),
-             x.converged ? 1.0 : 0.0,
-             1.0,
-             x.converged ? 0.0 : 1.0,
-             0.0,
-             x.converged};
-    res.rows.push_back(conv);
+    res.rows.push_back(converged_row(fmt::format("level {}", level), x));
     freestream_rows(res, fmt::format("level {}", level), x);
   }
-  const auto relative = [](std::string q, double v, double ref, double tol) {
-    Row row{std::move(q), v, ref, std::abs(v / ref - 1), tol, false};
-    row.pass = row.error <= tol;
-    return row;
-  };
   if (quick) {
     res.rows.push_back(
-        relative("Cf(0.97) level 2 vs CFL3D 3,264 cells", r[0].cf_097, 0.00262625, 0.02));
-    res.rows.push_back(relative("CD level 2 vs CFL3D 3,264 cells", r[0].cd, 0.00278507, 0.02));
+        relative_to("Cf(0.97) level 2 vs CFL3D 3,264 cells", r[0].cf_097, 0.00262625, 0.02));
+    res.rows.push_back(relative_to("CD level 2 vs CFL3D 3,264 cells", r[0].cd, 0.00278507, 0.02));
     return res;
   }
   const auto& fine = r.back();
@@ -297,8 +299,9 @@ Result run_flat_plate_sst(bool quick) {
     const double order = (a - b) * (b - c) > 0 ? std::log2((a - b) / (b - c)) : 0.0;
     res.notes.push_back(fmt::format("{}: observed order {:.2f} (levels 2-1-0)", name, order));
   }
-  res.rows.push_back(relative("Cf(0.97) finest vs CFL3D 545x385", fine.cf_097, 0.00269085, 0.01));
-  res.rows.push_back(relative("CD finest vs CFL3D 545x385", fine.cd, 0.00285332, 0.015));
+  res.rows.push_back(
+      relative_to("Cf(0.97) finest vs CFL3D 545x385", fine.cf_097, 0.00269085, 0.01));
+  res.rows.push_back(relative_to("CD finest vs CFL3D 545x385", fine.cd, 0.00285332, 0.015));
   return res;
 }
 
@@ -333,19 +336,12 @@ Result run_flat_plate_wall_functions(bool quick) {
         "{:.3g}-{:.3g} (mean {:.3g}), {} SIMPLE iterations{}, {:.1f} s",
         g.y_plus, x.cells, g.first_height, x.cf_097, x.cd, x.y_plus.min, x.y_plus.max,
         x.y_plus.mean, x.iterations, x.converged ? "" : " (NOT converged)", x.seconds));
-    res.rows.push_back(Row{fmt::format("y+ {:g} converged", g.y_plus), x.converged ? 1.0 : 0.0, 1.0,
-                           x.converged ? 0.0 : 1.0, 0.0, x.converged});
+    res.rows.push_back(converged_row(fmt::format("y+ {:g}", g.y_plus), x));
     freestream_rows(res, fmt::format("y+ {:g}", g.y_plus), x);
     for (auto [name, v, ref] :
          {std::tuple{"Cf(0.97)", x.cf_097, 0.00269085}, std::tuple{"CD", x.cd, 0.00285332}}) {
-      Row row{fmt::format("{} y+ {:g} vs CFL3D 545x385", name, g.y_plus),
-              v,
-              ref,
-              std::abs(v / ref - 1),
-              g.tolerance,
-              false};
-      row.pass = row.error <= row.tolerance;
-      res.rows.push_back(row);
+      res.rows.push_back(relative_to(fmt::format("{} y+ {:g} vs CFL3D 545x385", name, g.y_plus), v,
+                                     ref, g.tolerance));
     }
   }
   return res;
