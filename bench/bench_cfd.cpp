@@ -224,8 +224,9 @@ int main(int argc, char** argv) {
   }
   std::vector<double> distance;
   if (o.turbulence != "laminar") {
-    const mesher::Grid* grids[] = {&grid};
-    distance = engine::turbulence::wall_distance(mesh, engine::turbulence::wall_surface(grids));
+    const engine::fv::Mesh* meshes[] = {&mesh};
+    const engine::turbulence::WallDistances walls(meshes);
+    distance.assign(walls.of(0).begin(), walls.of(0).end());
   }
   std::vector<const std::vector<double>*> models;  // nullptr: laminar
   if (o.turbulence != "sst") models.push_back(nullptr);

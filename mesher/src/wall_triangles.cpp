@@ -3,10 +3,10 @@
 
 namespace auvloop::mesher {
 
-std::vector<geometry::Triangle> wall_triangles(const Grid& g) {
+std::vector<geometry::Triangle> wall_triangles(const Grid& g, const Eigen::Isometry3d& to) {
   std::vector<geometry::Triangle> out;
   const auto point = [&](int f, int k) -> Eigen::Vector3d {
-    return g.placement * g.points[static_cast<std::size_t>(g.face_point(f, k))];
+    return to * g.points[static_cast<std::size_t>(g.face_point(f, k))];
   };
   for (const Patch& patch : g.patches) {
     if (patch.type != PatchType::wall) continue;
@@ -14,7 +14,7 @@ std::vector<geometry::Triangle> wall_triangles(const Grid& g) {
       const int n = g.face_size(f);
       Eigen::Vector3d mean = Eigen::Vector3d::Zero();
       for (int k = 0; k < n; ++k) mean += g.points[static_cast<std::size_t>(g.face_point(f, k))];
-      const Eigen::Vector3d centre = g.placement * Eigen::Vector3d(mean / n);
+      const Eigen::Vector3d centre = to * Eigen::Vector3d(mean / n);
       for (int k = 0; k < n; ++k) out.push_back({point(f, k), point(f, (k + 1) % n), centre});
     }
   }

@@ -291,8 +291,9 @@ struct SstPlate {
     return ts;
   }
   std::vector<double> distance() const {
-    const mesher::Grid* grids[] = {&grid};
-    return engine::turbulence::wall_distance(mesh, engine::turbulence::wall_surface(grids));
+    const engine::fv::Mesh* meshes[] = {&mesh};
+    const engine::turbulence::WallDistances walls(meshes);
+    return {walls.of(0).begin(), walls.of(0).end()};
   }
 };
 }  // namespace
@@ -318,6 +319,31 @@ TEST(SstDivergence, ANonFiniteOmegaNamesTheEquationAndKeepsTheLastGoodFields) {
   EXPECT_EQ(flow.U.c[0].cells, u_good);
   EXPECT_EQ(sst.k.cells, k_good);
   EXPECT_TRUE(std::isnan(sst.omega.cells[400]));  // the fields the step began with
+}
+
+TEST(SstWallDistance, ANewDistanceIsCheckedAndReadByTheNextStep) {
+  SstPlate plate;
+  for (int k = 0; k < 3; ++k) plate.flow.step();
+  auto d = plate.distance();
+  EXPECT_THROW(plate.sst.set_wall_distance(std::span(d).first(d.size() - 1)),
+               std::invalid_argument);
+  d[7] = 0;
+  try {
+    plate.sst.set_wall_distance(d);
+    FAIL() << "a zero distance was taken";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("cell 7"), std::string::npos) << e.what();
+  }
+  // The walls twice as far everywhere: F1 (from the distance) changes at the next step.
+  SstPlate twin;
+  for (int k = 0; k < 3; ++k) twin.flow.step();
+  d = plate.distance();
+  for (double& v : d) v *= 2;
+  twin.sst.set_wall_distance(d);
+  plate.flow.step();
+  twin.flow.step();
+  const auto f1 = plate.sst.f1(), f1_far = twin.sst.f1();
+  EXPECT_FALSE(std::equal(f1.begin(), f1.end(), f1_far.begin()));
 }
 
 TEST(SstCheckpoint, ARestartContinuesBitwiseAndAModelMismatchIsNamed) {

@@ -21,6 +21,15 @@ namespace {
 void require(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument("SST k-omega: " + what);
 }
+
+void check_wall_distance(const fv::Mesh& mesh, std::span<const double> d) {
+  const auto n = static_cast<std::size_t>(mesh.cells());
+  require(d.size() == n, fmt::format("{} wall distances for {} cells", d.size(), n));
+  for (std::size_t c = 0; c < n; ++c)
+    require(
+        d[c] > 0 && std::isfinite(d[c]),
+        fmt::format("the wall distance of {} is {}", fv::cell_at(mesh, static_cast<int>(c)), d[c]));
+}
 }  // namespace
 
 SstModel::SstModel(const fv::Mesh& mesh, std::vector<double> wall_distance, SstSettings settings)
@@ -31,11 +40,7 @@ SstModel::SstModel(const fv::Mesh& mesh, std::vector<double> wall_distance, SstS
       settings_(settings),
       d_(std::move(wall_distance)) {
   const auto n = static_cast<std::size_t>(mesh.cells());
-  require(d_.size() == n, fmt::format("{} wall distances for {} cells", d_.size(), n));
-  for (std::size_t c = 0; c < n; ++c)
-    require(d_[c] > 0 && std::isfinite(d_[c]),
-            fmt::format("the wall distance of {} is {}", fv::cell_at(mesh, static_cast<int>(c)),
-                        d_[c]));
+  check_wall_distance(mesh, d_);
   require(settings_.nu > 0, "nu must be positive");
   require(settings_.freestream.k > 0 && settings_.freestream.omega > 0,
           fmt::format("free-stream k and omega must be positive, got {} and {}",
@@ -91,6 +96,11 @@ SstModel::SstModel(const fv::Mesh& mesh, std::vector<double> wall_distance, SstS
   S2_.assign(n, 0.0);
   F1_.assign(n, 1.0);
   nu_eff_.assign(static_cast<std::size_t>(mesh.faces()), settings_.nu);
+}
+
+void SstModel::set_wall_distance(std::span<const double> wall_distance) {
+  check_wall_distance(mesh_, wall_distance);
+  d_.assign(wall_distance.begin(), wall_distance.end());
 }
 
 void SstModel::inlet(const std::string& patch) {

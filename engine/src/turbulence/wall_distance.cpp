@@ -1,35 +1,140 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Wall distance: the algorithm is stated in auvloop/engine/turbulence/wall_distance.hpp.
+// Wall distance: the algorithm (steps 1-4) is stated in
+// auvloop/engine/turbulence/wall_distance.hpp.
 #include "auvloop/engine/turbulence/wall_distance.hpp"
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
 #include "../fv/parallel.hpp"
+#include "auvloop/mesher/wall_triangles.hpp"
 
 namespace auvloop::engine::turbulence {
 
-geometry::TriangleDistance wall_surface(std::span<const mesher::Grid* const> grids) {
-  std::vector<geometry::Triangle> triangles;
+namespace {
+// Each bound is lowered by this share of the magnitudes it is computed from, so that round-off
+// never lifts a bound above the exact value a query returns (the minimum found is then the exact
+// one, and the same whatever entries were bounds).
+constexpr double kSlack = 1e-12;
+
+// Relative placements equal to round-off (those of a whole-system motion composed into every
+// grid's placement): rotation entries within 1e-12, the translation within 1e-12 of its size.
+bool same(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+  const double scale = 1 + std::max(a.translation().norm(), b.translation().norm());
+  return (a.linear() - b.linear()).cwiseAbs().maxCoeff() <= 1e-12 &&
+         (a.translation() - b.translation()).cwiseAbs().maxCoeff() <= 1e-12 * scale;
+}
+}  // namespace
+
+WallDistances::WallDistances(std::span<const fv::Mesh* const> meshes)
+    : meshes_(meshes.begin(), meshes.end()) {
+  // 1.
   std::string names;
-  for (const mesher::Grid* g : grids) {
-    const auto t = mesher::wall_triangles(*g);
-    triangles.insert(triangles.end(), t.begin(), t.end());
-    names += (names.empty() ? "'" : ", '") + g->name + "'";
+  for (std::size_t g = 0; g < meshes_.size(); ++g) {
+    const mesher::Grid& grid = meshes_[g]->source_grid();
+    names += (names.empty() ? "'" : ", '") + grid.name + "'";
+    const auto triangles = mesher::wall_triangles(grid, Eigen::Isometry3d::Identity());
+    if (triangles.empty()) continue;
+    Eigen::AlignedBox3d box;
+    for (const auto& t : triangles)
+      for (const auto& p : t) box.extend(p);
+    const Eigen::Vector3d centre = box.center();
+    double radius = 0;
+    for (const auto& t : triangles)
+      for (const auto& p : t) radius = std::max(radius, (p - centre).norm());
+    groups_.push_back({static_cast<int>(g), geometry::TriangleDistance(triangles), centre, radius});
   }
-  if (triangles.empty())
+  if (groups_.empty())
     throw std::invalid_argument("wall distance: no wall patch face in the grids " + names);
-  return geometry::TriangleDistance(triangles);
+  const std::size_t H = groups_.size();
+  taken_at_.resize(meshes_.size());
+  entries_.resize(meshes_.size());
+  distance_.resize(meshes_.size());
+  for (std::size_t g = 0; g < meshes_.size(); ++g) {
+    const auto n = static_cast<std::size_t>(meshes_[g]->cells());
+    taken_at_[g].assign(H, Eigen::Isometry3d::Identity());
+    entries_[g].assign(n * H, Entry{});
+    distance_[g].assign(n, 0.0);
+  }
+  // 2 and 3 with every pair new.
+  initial_ = refresh(true);
 }
 
-std::vector<double> wall_distance(const fv::Mesh& mesh, const geometry::TriangleDistance& walls) {
-  const Eigen::Isometry3d& placement = mesh.source_grid().placement;
-  std::vector<double> d(static_cast<std::size_t>(mesh.cells()));
-  fv::parallel_for(
-      mesh.cells(),
-      [&](int c) { d[static_cast<std::size_t>(c)] = walls.distance(placement * mesh.centre(c)); },
-      64);
-  return d;
+std::span<const double> WallDistances::of(int grid) const {
+  return distance_.at(static_cast<std::size_t>(grid));
+}
+
+WallDistances::Work WallDistances::update() {
+  return refresh(false);
+}
+
+WallDistances::Work WallDistances::refresh(bool all) {
+  Work work;
+  const std::size_t H = groups_.size();
+  for (std::size_t g = 0; g < meshes_.size(); ++g) {
+    const fv::Mesh& mesh = *meshes_[g];
+    const Eigen::Isometry3d& P_g = mesh.source_grid().placement;
+    // The relative placements now, and which of them changed.
+    std::vector<Eigen::Isometry3d> T(H);
+    std::vector<char> changed(H, 0);
+    bool any = false;
+    for (std::size_t h = 0; h < H; ++h) {
+      const auto& P_h = meshes_[static_cast<std::size_t>(groups_[h].grid)]->source_grid().placement;
+      T[h] = P_h.inverse() * P_g;
+      changed[h] = all || !same(T[h], taken_at_[g][h]) ? 1 : 0;
+      any = any || changed[h] != 0;
+      work.pairs += changed[h];
+    }
+    if (!any) continue;
+    const auto& old = taken_at_[g];
+    auto& entries = entries_[g];
+    auto& distance = distance_[g];
+    // Counts are sums of integers, exact in any order.
+    const auto counts = fv::parallel_sum<2>(
+        mesh.cells(),
+        [&](int b, int e, std::array<double, 2>& count) {
+          for (auto c = static_cast<std::size_t>(b); c < static_cast<std::size_t>(e); ++c) {
+            const Eigen::Vector3d& x = mesh.centre(static_cast<int>(c));
+            Entry* row = &entries[c * H];
+            // Step 4: the new bounds of the changed pairs.
+            for (std::size_t h = 0; h < H; ++h) {
+              if (!changed[h]) continue;
+              const Group& G = groups_[h];
+              const Eigen::Vector3d y = T[h] * x;
+              const double r = (y - G.centre).norm();
+              double bound = r - G.radius - kSlack * (r + G.radius);
+              if (!all) {
+                const double moved = (y - old[h] * x).norm();
+                const double was = row[h].value;
+                bound = std::max(bound, was - moved - kSlack * (was + moved + y.norm()));
+              }
+              row[h] = {std::max(0.0, bound), false};
+              count[0] += 1;
+            }
+            // Step 3: the least entry exact.
+            for (;;) {
+              std::size_t least = 0;
+              for (std::size_t h = 1; h < H; ++h)
+                if (row[h].value < row[least].value) least = h;
+              if (row[least].exact) {
+                distance[c] = row[least].value;
+                break;
+              }
+              row[least] = {groups_[least].walls.distance(T[least] * x), true};
+              count[1] += 1;
+            }
+          }
+        },
+        64);
+    work.bounds += static_cast<long>(counts[0]);
+    work.queries += static_cast<long>(counts[1]);
+    for (std::size_t h = 0; h < H; ++h)
+      if (changed[h]) taken_at_[g][h] = T[h];
+  }
+  return work;
 }
 
 }  // namespace auvloop::engine::turbulence

@@ -81,8 +81,8 @@ FlatPlateResult flat_plate_sst(const FlatPlateCase& c) {
   const double nu = U_inf * L / Re;
   const mesher::Grid grid = mesher::flat_plate(c.spec, c.level);
   const fv::Mesh mesh(grid);
-  const mesher::Grid* grids[] = {&grid};
-  const auto walls = turbulence::wall_surface(grids);
+  const fv::Mesh* meshes[] = {&mesh};
+  const turbulence::WallDistances walls(meshes);
   fv::PimpleSettings s;
   s.nu = nu;
   s.steady = true;
@@ -102,7 +102,8 @@ FlatPlateResult flat_plate_sst(const FlatPlateCase& c) {
   ts.convection = c.turbulence_convection;
   ts.wall = c.wall;
   ts.tolerance = c.transport_tolerance;
-  turbulence::SstModel sst(mesh, turbulence::wall_distance(mesh, walls), ts);
+  const auto distance = walls.of(0);
+  turbulence::SstModel sst(mesh, {distance.begin(), distance.end()}, ts);
   flow.U.fix(mesh, "inlet", {U_inf, 0, 0});
   flow.U.fix(mesh, "plate", {0, 0, 0});
   flow.slip("symmetry");

@@ -10,7 +10,8 @@
 namespace auvloop::mesher {
 
 // The faces of the grid's wall patches as triangles about each face's point average (the
-// decomposition compute_geometry uses), in the body frame (the grid's placement applied).
-std::vector<geometry::Triangle> wall_triangles(const Grid& g);
+// decomposition compute_geometry uses), mapped by `to` from the grid's own frame (the identity: in
+// that frame; g.placement: in the body frame).
+std::vector<geometry::Triangle> wall_triangles(const Grid& g, const Eigen::Isometry3d& to);
 
 }  // namespace auvloop::mesher

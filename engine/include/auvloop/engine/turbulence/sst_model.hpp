@@ -86,7 +86,7 @@ struct WallYPlus {
 
 class SstModel final : public fv::TurbulenceModel {
  public:
-  // `wall_distance`: per cell of `mesh` (wall_distance.hpp). Throws std::invalid_argument if its
+  // `wall_distance`: per cell of `mesh` (WallDistances::of). Throws std::invalid_argument if its
   // size is not the mesh's, a setting is out of range, or the free stream is not positive.
   SstModel(const fv::Mesh& mesh, std::vector<double> wall_distance, SstSettings settings);
 
@@ -94,6 +94,9 @@ class SstModel final : public fv::TurbulenceModel {
   fv::ScalarField omega;  // 1/s
   fv::ScalarField nu_t;   // m^2/s; boundary: per face, walls from the wall treatment
 
+  // The wall distance after the grids moved relative to each other (WallDistances::update), read
+  // from the next correct() on; throws std::invalid_argument as the constructor.
+  void set_wall_distance(std::span<const double> wall_distance);
   // Free-stream k and omega fixed on a patch (an inlet).
   void inlet(const std::string& patch);
   // Initial cell values for initialise() instead of the free stream (a restart from another

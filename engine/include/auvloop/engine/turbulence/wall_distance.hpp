@@ -1,32 +1,88 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Wall distance for the turbulence model (SST's blending functions F1 and F2, the wall
-// treatment's y+): for every cell centre of a grid, the distance to the nearest wall face of the
-// whole grid system, so that the cells of a fin grid see the hull and the other fins as well as
-// their own fin, and the background's cells every body.
-//   1. walls: the faces of every wall patch of every grid, split into triangles about each face's
-//      point average (the decomposition of the face geometry), in the body frame
-//      (mesher::wall_triangles), in a CGAL AABB tree (geometry::TriangleDistance): once per
-//      relative placement of the grids;
-//   2. per cell: the distance from its centre, placed in the body frame, to the nearest triangle:
-//      exact for the walls as the grids discretise them (a cell at a curved wall sees the chords,
-//      as its face fluxes do). In parallel over cells; every query is independent, so the result
-//      does not depend on the number of threads.
+// treatment's y+): for every cell centre of every grid of a grid system, the distance to the
+// nearest wall face of the whole system, so that the cells of a fin grid see the hull and the
+// other fins as well as their own fin, and the background's cells every body; kept current as
+// the grids move relative to each other, re-measuring only where a moved wall can be the nearest.
+//   1. wall groups: per grid with wall faces, its wall faces split into triangles about each
+//      face's point average (the decomposition of the face geometry), in the grid's own frame
+//      (mesher::wall_triangles), in a CGAL AABB tree (geometry::TriangleDistance), and the
+//      sphere (centre s_h, radius R_h) about their bounding box; built once, since a group moves
+//      rigidly with its grid;
+//   2. entries: per cell c of grid g and group h, either the exact distance from the centre x_c to
+//      h's triangles, or a lower bound of it, both taken at the relative placement
+//      T_hg = P_h^-1 P_g (P the grids' placements, grid frame -> body frame). The bound is the
+//      sphere's, max(0, |T_hg x_c - s_h| - R_h), and after a motion also the old entry e less
+//      the distance the centre moved relative to h, e - |T_hg x_c - T'_hg x_c| (T' the old
+//      placement; a distance changes by at most the distance its point moves), whichever is
+//      larger: a small turn leaves most entries close to their old, exact values;
+//   3. a cell's distance is its least entry, which must be exact: while the least entry (the
+//      first of equal ones) is a bound, it is replaced by the exact distance. An exact value is
+//      never below its bound, so a cell needs at most one query per group and the result is the
+//      exact minimum over every group;
+//   4. update(), after placements change: for each pair (g, h) whose T_hg changed since the
+//      entries were taken (by more than 1e-12, the round-off of composing placements), the
+//      entries of g's cells for h become the new bounds, then step 3 for every cell of g.
+//      Unchanged pairs keep their entries, so a fin turning re-measures only the cells the fin may
+//      now be nearest to, and a whole-system motion (every T unchanged) re-measures nothing.
+// Every cell's entries depend on that cell alone, in parallel over cells: the distances do not
+// depend on the number of threads, and after any sequence of updates they are the ones a new
+// WallDistances at the final placements computes (bit for bit, unless a relative placement moved
+// by round-off only: then by round-off).
 #pragma once
 
 #include <span>
 #include <vector>
 
+#include <Eigen/Geometry>
+
 #include "auvloop/engine/fv/mesh.hpp"
 #include "auvloop/geometry/triangle_distance.hpp"
-#include "auvloop/mesher/wall_triangles.hpp"
 
 namespace auvloop::engine::turbulence {
 
-// Step 1. Throws std::invalid_argument naming the grids when none of them has a wall patch face.
-geometry::TriangleDistance wall_surface(std::span<const mesher::Grid* const> grids);
+class WallDistances {
+ public:
+  // Steps 1-3 for `meshes` (one per grid of the system, at their grids' current placements). The
+  // meshes must outlive this object; their grids' placements are read at every update().
+  // Throws std::invalid_argument naming the grids when none of them has a wall patch face.
+  explicit WallDistances(std::span<const fv::Mesh* const> meshes);
 
-// Step 2: the distance of each cell centre of `mesh` (its grid's placement applied) to `walls`
-// (m), one per cell.
-std::vector<double> wall_distance(const fv::Mesh& mesh, const geometry::TriangleDistance& walls);
+  // Per cell of meshes[grid] (m).
+  [[nodiscard]] std::span<const double> of(int grid) const;
+
+  // What an update (or the construction) measured.
+  struct Work {
+    int pairs = 0;     // (grid, group) pairs whose relative placement changed
+    long bounds = 0;   // entries replaced by a bound
+    long queries = 0;  // exact distances measured (AABB-tree queries)
+  };
+  // Step 4 for the grids' current placements.
+  Work update();
+  // The construction's work (every pair changed: one bound per entry).
+  [[nodiscard]] const Work& initial_work() const { return initial_; }
+
+ private:
+  struct Group {
+    int grid = 0;
+    geometry::TriangleDistance walls;  // in the grid's own frame
+    Eigen::Vector3d centre;            // of the bounding sphere, same frame
+    double radius = 0;
+  };
+  struct Entry {
+    double value = 0;
+    bool exact = false;
+  };
+  Work refresh(bool all);
+
+  std::vector<const fv::Mesh*> meshes_;
+  std::vector<Group> groups_;
+  // Per grid g: T_hg per group h at which its entries were taken; entries cell-major, one per
+  // group; the distances.
+  std::vector<std::vector<Eigen::Isometry3d>> taken_at_;
+  std::vector<std::vector<Entry>> entries_;
+  std::vector<std::vector<double>> distance_;
+  Work initial_;
+};
 
 }  // namespace auvloop::engine::turbulence
