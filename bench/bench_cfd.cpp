@@ -104,6 +104,7 @@ mesher::Grid cavity_grid(const Options& o) {
 struct Result {
   double per_step = 0, first_step = 0, assembly = 0, momentum = 0, pressure = 0, gradient = 0;
   double max_co = 0, pressure_iterations = 0, momentum_iterations = 0, turbulence = 0;
+  double k_iterations = 0, omega_iterations = 0;
 };
 
 // One run on `threads` threads: the first step (multigrid setup, first touch of every array) is
@@ -148,6 +149,8 @@ Result run(const Options& o, const fv::Mesh& mesh, int threads, bool hull,
     res.pressure_iterations += r.pressure_iterations;
     res.momentum_iterations += r.momentum_iterations;
     res.turbulence += r.seconds_turbulence;
+    res.k_iterations += r.turbulence.k_iterations;
+    res.omega_iterations += r.turbulence.omega_iterations;
     res.max_co = std::max(res.max_co, r.max_courant);
   }
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -157,6 +160,8 @@ Result run(const Options& o, const fv::Mesh& mesh, int threads, bool hull,
     *v /= total;
   res.pressure_iterations /= timed;
   res.momentum_iterations /= timed;
+  res.k_iterations /= timed;
+  res.omega_iterations /= timed;
   return res;
 }
 
@@ -256,6 +261,9 @@ int main(int argc, char** argv) {
             100 * res.assembly, 100 * (res.momentum - res.assembly), 100 * res.pressure,
             100 * (1 - res.momentum - res.pressure), 100 * res.gradient, res.pressure_iterations,
             res.momentum_iterations);
+        if (model)
+          std::printf("  k and omega iterations per step: %.1f, %.1f\n", res.k_iterations,
+                      res.omega_iterations);
       }
     }
   }

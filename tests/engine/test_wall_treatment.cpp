@@ -75,6 +75,14 @@ TEST(WallProduction, VanishesInTheSublayerAndIsTheLogLayersInIt) {
                 1.0, rel)
         << "y+ " << yp;
   }
+  // From u+ (the SST model's path): the same as from the y+ that u+ belongs to; zero without
+  // friction.
+  for (double up : {0.7, 9.0, 22.0})
+    EXPECT_NEAR(wall_production_from_u_plus(law, up, u_tau, nu) /
+                    wall_production(law, law.y_plus(up), u_tau, nu),
+                1.0, 1e-12)
+        << "u+ " << up;
+  EXPECT_EQ(wall_production_from_u_plus(law, 3.0, 0.0, nu), 0.0);
   // dy+/du+ against a central difference of y_plus.
   for (double u : {0.5, 8.0, 20.0}) {
     const double h = 1e-5;

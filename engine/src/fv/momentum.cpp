@@ -9,6 +9,7 @@
 #include "auvloop/engine/fv/pimple.hpp"
 
 #include <algorithm>
+#include <cstring>
 
 #include <fmt/format.h>
 
@@ -19,15 +20,32 @@ namespace auvloop::engine::fv {
 
 void Pimple::assemble_momentum(bool final) {
   const TimeScheme ts = time_scheme();
-  if (turbulence_) transpose_stress();
+  // grad U once, for the convection scheme, the non-orthogonal correction and the transpose
+  // stress alike (each would otherwise compute it again from the same values); with a model,
+  // that of its strain when U has not changed since.
+  static const std::vector<Eigen::Vector3d> none;
+  std::array<const std::vector<Eigen::Vector3d>*, 3> g{&none, &none, &none};
+  if (turbulence_) {
+    const auto& all = velocity_gradient();
+    for (std::size_t i = 0; i < 3; ++i) g[i] = &all[i];
+    transpose_stress();
+  } else if (settings_.convection != Convection::upwind || !mesh_.orthogonal()) {
+    work_.grad_u_valid = false;  // only the active components, below
+    for (std::size_t i = 0; i < 3; ++i) {
+      if (!active_[i]) continue;
+      work_.grad_u[i].resize(static_cast<std::size_t>(mesh_.cells()));
+      mesh_.gradient(U.c[i].cells, U.c[i].boundary, work_.grad_u[i]);
+      g[i] = &work_.grad_u[i];
+    }
+  }
   for (std::size_t i = 0; i < 3; ++i) {
     if (!active_[i]) continue;
     Matrix& eq = momentum_.eq[i];
     // div(nu_eff grad U) implicit and div(nu_eff dev2(grad U^T)) explicit with a turbulence
     // model, else laplacian(nu, U); no time derivative when steady.
-    const auto convection = div(mesh_, phi, U.c[i], settings_.convection);
-    const auto diffusion = turbulence_ ? laplacian(mesh_, turbulence_->nu_eff(), U.c[i])
-                                       : laplacian(mesh_, settings_.nu, U.c[i]);
+    const auto convection = div(mesh_, phi, U.c[i], settings_.convection, *g[i]);
+    const auto diffusion = turbulence_ ? laplacian(mesh_, turbulence_->nu_eff(), U.c[i], *g[i])
+                                       : laplacian(mesh_, settings_.nu, U.c[i], *g[i]);
     if (settings_.steady) {
       eq = convection - diffusion;
     } else {
@@ -46,15 +64,35 @@ void Pimple::assemble_momentum(bool final) {
 
 // The explicit part of the effective stress, per unit volume and component j (OpenFOAM's
 // divDevReff): (1 / V) sum_f nu_eff,f [sum_i S_f,i (du_i/dx_j)_f - 2/3 (div U)_f S_f,j], with the
-// face gradients linearly interpolated from the cell gradients (the owner's on boundary faces).
+// face gradients linearly interpolated from the cell gradients (the owner's on boundary faces:
+// those assemble_momentum computed).
 // Zero for uniform nu_eff and divergence-free U in the continuum; it carries grad(nu_t) . grad U^T.
+const std::array<std::vector<Eigen::Vector3d>, 3>& Pimple::velocity_gradient() {
+  const auto n = static_cast<std::size_t>(mesh_.cells());
+  const auto nb = static_cast<std::size_t>(mesh_.boundary_faces());
+  auto& of = work_.grad_u_of;
+  const auto same = [&](std::size_t i) {
+    const auto& u = U.c[i];
+    return of[i].size() == n + nb &&
+           std::memcmp(of[i].data(), u.cells.data(), n * sizeof(double)) == 0 &&
+           std::memcmp(of[i].data() + n, u.boundary.data(), nb * sizeof(double)) == 0;
+  };
+  if (work_.grad_u_valid && same(0) && same(1) && same(2)) return work_.grad_u;
+  for (std::size_t i = 0; i < 3; ++i) {
+    const auto& u = U.c[i];
+    work_.grad_u[i].resize(n);
+    mesh_.gradient(u.cells, u.boundary, work_.grad_u[i]);
+    of[i].resize(n + nb);
+    std::copy(u.cells.begin(), u.cells.end(), of[i].begin());
+    std::copy(u.boundary.begin(), u.boundary.end(), of[i].begin() + static_cast<std::ptrdiff_t>(n));
+  }
+  work_.grad_u_valid = true;
+  return work_.grad_u;
+}
+
 void Pimple::transpose_stress() {
   const auto n = static_cast<std::size_t>(mesh_.cells());
-  auto& g = work_.grad_u;
-  for (std::size_t i = 0; i < 3; ++i) {
-    g[i].resize(n);
-    mesh_.gradient(U.c[i].cells, U.c[i].boundary, g[i]);
-  }
+  const auto& g = work_.grad_u;  // assemble_momentum's
   const auto nu_eff = turbulence_->nu_eff();
   const int internal = mesh_.internal_faces();
   for (auto& t : work_.transpose) t.resize(n);

@@ -175,6 +175,7 @@ StepReport Pimple::step() {
         t0 = std::chrono::steady_clock::now();
         TurbulenceInput in;
         in.U = &U;
+        in.grad_U = &velocity_gradient();
         in.phi = phi;
         in.time = time_scheme();
         in.steady = settings_.steady;

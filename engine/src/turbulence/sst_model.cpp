@@ -131,7 +131,7 @@ void SstModel::initialise(const fv::VectorField& U, std::span<const double>) {
   }
   k.update_boundary(mesh_);
   omega.update_boundary(mesh_);
-  strain(U);
+  strain(U, nullptr);
   wall_treatment(U);
   update_nu_t();
   for (auto& level : k_old_) level = k.cells;
@@ -145,12 +145,21 @@ void SstModel::begin_step() {
   omega_old_[0] = omega.cells;
 }
 
-// Step 1 (S^2 = 2 S_ij S_ij from the cell gradients of U).
-void SstModel::strain(const fv::VectorField& U) {
+// Step 1 (S^2 = 2 S_ij S_ij from the cell gradients of U, given or computed here).
+void SstModel::strain(const fv::VectorField& U,
+                      const std::array<std::vector<Eigen::Vector3d>, 3>* given) {
   const auto n = static_cast<std::size_t>(mesh_.cells());
-  std::array<Scratch<Eigen::Vector3d>, 3> g{
-      Scratch<Eigen::Vector3d>(n), Scratch<Eigen::Vector3d>(n), Scratch<Eigen::Vector3d>(n)};
-  for (std::size_t i = 0; i < 3; ++i) mesh_.gradient(U.c[i].cells, U.c[i].boundary, *g[i]);
+  const bool own = given == nullptr;
+  std::array<Scratch<Eigen::Vector3d>, 3> computed{Scratch<Eigen::Vector3d>(own ? n : 0),
+                                                   Scratch<Eigen::Vector3d>(own ? n : 0),
+                                                   Scratch<Eigen::Vector3d>(own ? n : 0)};
+  std::array<std::span<const Eigen::Vector3d>, 3> g;
+  for (std::size_t i = 0; i < 3; ++i) {
+    if (own) mesh_.gradient(U.c[i].cells, U.c[i].boundary, *computed[i]);
+    g[i] = own ? std::span<const Eigen::Vector3d>(*computed[i])
+               : std::span<const Eigen::Vector3d>((*given)[i]);
+    require(g[i].size() == n, "the velocity gradient needs one vector per cell");
+  }
   parallel_for(mesh_.cells(), [&](int c) {
     const auto s = static_cast<std::size_t>(c);
     Eigen::Matrix3d G;  // G(i, j) = d u_i / d x_j
@@ -176,6 +185,7 @@ void SstModel::wall_treatment(const fv::VectorField& U) {
         const double ut = u.norm();
         w.u_tau = settings_.law.friction_velocity(ut, w.y, nu);
         w.y_plus = w.y * w.u_tau / nu;
+        w.u_plus = w.u_tau > 0 ? ut / w.u_tau : 0.0;
         w.nu_t = ut > 0 && settings_.wall != WallTreatment::resolved
                      ? std::max(0.0, w.u_tau * w.u_tau * w.y / ut - nu)
                      : 0.0;
@@ -188,7 +198,7 @@ void SstModel::wall_treatment(const fv::VectorField& U) {
   for (const auto& w : walls_) {
     const auto at = static_cast<std::size_t>(w.cell);
     wall_omega_[at] += wall_omega(w.y, w.u_tau, nu, c);
-    wall_G_[at] += wall_production(settings_.law, w.y_plus, w.u_tau, nu);
+    wall_G_[at] += wall_production_from_u_plus(settings_.law, w.u_plus, w.u_tau, nu);
     wall_weight_[at] += roughness_share(menter_roughness(2 * w.y_plus, c));  // d1 = 2 y
   }
   rough_cells_.clear();
@@ -236,7 +246,7 @@ fv::TurbulenceReport SstModel::correct(const fv::TurbulenceInput& in) {
   const int internal = mesh_.internal_faces();
   fv::TurbulenceReport report;
   // 1. Gradients, S^2, F1 and the blended constants' diffusivities.
-  strain(*in.U);
+  strain(*in.U, in.grad_U);
   Scratch<Eigen::Vector3d> gk(n), gw(n);
   mesh_.gradient(k.cells, k.boundary, *gk);
   mesh_.gradient(omega.cells, omega.boundary, *gw);
@@ -267,17 +277,18 @@ fv::TurbulenceReport SstModel::correct(const fv::TurbulenceInput& in) {
       gamma_[fs] = nu + sigma_nut;
     });
   };
-  // grad: phi_field's gradient from step 1 (neither field changes before its own solve).
+  // grad: phi_field's gradient from step 1 (neither field changes before its own solve), for
+  // the convection scheme and the non-orthogonal correction.
   const auto assemble = [&](fv::ScalarField& phi_field,
                             const std::array<std::vector<double>, 2>& old,
                             std::span<const Eigen::Vector3d> grad) {
     const auto convection = fv::div(mesh_, in.phi, phi_field, settings_.convection, grad);
     if (in.steady) {
-      eq_ = convection - fv::Sp(mesh_, *div_phi) - fv::laplacian(mesh_, gamma_, phi_field) +
+      eq_ = convection - fv::Sp(mesh_, *div_phi) - fv::laplacian(mesh_, gamma_, phi_field, grad) +
             fv::Sp(mesh_, rate_);
     } else {
       eq_ = fv::ddt(mesh_, in.time, old[0], old[1]) + convection - fv::Sp(mesh_, *div_phi) -
-            fv::laplacian(mesh_, gamma_, phi_field) + fv::Sp(mesh_, rate_);
+            fv::laplacian(mesh_, gamma_, phi_field, grad) + fv::Sp(mesh_, rate_);
     }
     eq_.add_rhs(mesh_, source_);
   };

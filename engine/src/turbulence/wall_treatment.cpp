@@ -67,7 +67,13 @@ double LawOfTheWall::friction_velocity(double U, double y, double nu) const {
 }
 
 double wall_production(const LawOfTheWall& law, double y_plus, double u_tau, double nu) {
-  const double slope = 1 / law.dy_plus_du_plus(law.u_plus(y_plus));  // du+/dy+
+  return wall_production_from_u_plus(law, law.u_plus(y_plus), u_tau, nu);
+}
+
+double wall_production_from_u_plus(const LawOfTheWall& law, double u_plus, double u_tau,
+                                   double nu) {
+  if (u_tau == 0) return 0;
+  const double slope = 1 / law.dy_plus_du_plus(u_plus);  // du+/dy+
   return u_tau * u_tau * u_tau * u_tau / nu * (1 - slope) * slope;
 }
 

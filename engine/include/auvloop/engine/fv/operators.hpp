@@ -38,15 +38,27 @@ struct LaplacianTerm {
   std::span<const double> gamma_faces;  // empty: gamma_uniform
   double gamma_uniform;
   const ScalarField* phi;
+  std::span<const Eigen::Vector3d> grad;  // phi's cell gradient if already computed, or empty
   [[nodiscard]] const Mesh& mesh() const { return *m; }
   void add_to(Matrix& eq, double sign) const;
 };
 inline LaplacianTerm laplacian(const Mesh& mesh, std::span<const double> gamma,
                                const ScalarField& phi) {
-  return {&mesh, gamma, 0.0, &phi};
+  return {&mesh, gamma, 0.0, &phi, {}};
 }
 inline LaplacianTerm laplacian(const Mesh& mesh, double gamma, const ScalarField& phi) {
-  return {&mesh, {}, gamma, &phi};
+  return {&mesh, {}, gamma, &phi, {}};
+}
+// The same with phi's cell gradient (Mesh::gradient of its current values) supplied, as when the
+// convection term of the same equation needs it too: the non-orthogonal correction then does not
+// compute it again (the same values, so the same result bit for bit).
+inline LaplacianTerm laplacian(const Mesh& mesh, std::span<const double> gamma,
+                               const ScalarField& phi, std::span<const Eigen::Vector3d> grad) {
+  return {&mesh, gamma, 0.0, &phi, grad};
+}
+inline LaplacianTerm laplacian(const Mesh& mesh, double gamma, const ScalarField& phi,
+                               std::span<const Eigen::Vector3d> grad) {
+  return {&mesh, {}, gamma, &phi, grad};
 }
 
 // div(F, phi) with face volume fluxes F (m^3/s, positive out of the owner): upwind implicit and

@@ -137,6 +137,10 @@ class Pimple {
     std::array<Matrix, 3> eq;  // without the pressure gradient
   };
   void assemble_momentum(bool final);
+  // The cell gradients of U's three components, computed only when U (its cell and boundary
+  // values) is not bit for bit the U of the last computation: the model's strain after the
+  // correctors and the next momentum assembly see the same U (the grid's geometry is fixed).
+  const std::array<std::vector<Eigen::Vector3d>, 3>& velocity_gradient();
   void transpose_stress();
   void solve_momentum(StepReport& r, bool first);
   void correct_pressure(StepReport& r, bool first, bool final);
@@ -162,7 +166,11 @@ class Pimple {
     std::vector<double> D, Df, phiHbyA, net, rhs, h, source, p_prev;
     std::array<std::vector<double>, 3> HbyA;
     std::vector<Eigen::Vector3d> gp;
-    std::array<std::vector<Eigen::Vector3d>, 3> grad_u;  // transpose_stress()
+    // grad U per component (velocity_gradient()) and the U (cells, then boundary values) it is
+    // of.
+    std::array<std::vector<Eigen::Vector3d>, 3> grad_u;
+    std::array<std::vector<double>, 3> grad_u_of;
+    bool grad_u_valid = false;
     std::array<std::vector<double>, 3> transpose;
     Matrix p_eq;
   };

@@ -14,6 +14,7 @@
 // The flow never owns the model; the model must outlive the Pimple it is attached to.
 #pragma once
 
+#include <array>
 #include <span>
 #include <string>
 #include <vector>
@@ -27,6 +28,9 @@ namespace auvloop::engine::fv {
 // What correct() is given: the flow after its pressure correctors.
 struct TurbulenceInput {
   const VectorField* U = nullptr;
+  // The cell gradients of U's components (Mesh::gradient of U's current values), which the next
+  // momentum assembly reuses while U stays as it is.
+  const std::array<std::vector<Eigen::Vector3d>, 3>* grad_U = nullptr;
   std::span<const double> phi;  // face volume fluxes (m^3/s)
   TimeScheme time;              // this step's scheme (Euler on the first step)
   bool steady = false;          // no time derivative (PimpleSettings::steady)

@@ -13,7 +13,8 @@
 // difference only where the limiter acts (the limited_cells count of the report).
 //
 // One correct() (the PIMPLE hook after the pressure correctors, turbulence_model.hpp):
-//   1. the cell gradients of U, k and omega; S^2 per cell; F1 with the current k, omega;
+//   1. the cell gradients of U (the flow's, TurbulenceInput::grad_U), k and omega; S^2 per cell;
+//      F1 with the current k, omega;
 //   2. the wall treatment per wall face f with first cell P: the wall-parallel speed U_t of P
 //      relative to the wall at the face-normal distance y of its centre, u_tau from Spalding's
 //      law, y+ = y u_tau / nu; the first cell's target omega wall_omega(y, u_tau), its weight
@@ -132,11 +133,12 @@ class SstModel final : public fv::TurbulenceModel {
     double y = 0;      // face-normal distance of the owner's centre (m)
     double u_tau = 0;  // m/s
     double y_plus = 0;
-    double nu_t = 0;  // the wall function's nu_t,w (m^2/s)
+    double u_plus = 0;  // U_t / u_tau
+    double nu_t = 0;    // the wall function's nu_t,w (m^2/s)
   };
   void wall_treatment(const fv::VectorField& U);
   void update_nu_t();
-  void strain(const fv::VectorField& U);
+  void strain(const fv::VectorField& U, const std::array<std::vector<Eigen::Vector3d>, 3>* given);
 
   const fv::Mesh& mesh_;
   SstSettings settings_;

@@ -46,6 +46,9 @@ struct LawOfTheWall {
 
 // The first cell's k production (m^2/s^3) at y+ (above), friction velocity u_tau.
 double wall_production(const LawOfTheWall& law, double y_plus, double u_tau, double nu);
+// The same from u+ = U / u_tau, which friction_velocity's caller has already (no inverse of the
+// law to take); zero when u_tau is zero.
+double wall_production_from_u_plus(const LawOfTheWall& law, double u_plus, double u_tau, double nu);
 
 // The sand-grain roughness ks+ that Menter's wall-face omega amounts to on a first cell of
 // height d1+ = d1 u_tau / nu (above).
