@@ -1,0 +1,93 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The composite grid of an overset pair (a cylinder channel and a box turned and moved over it)
+// against its components: it is a valid grid; every composite cell has its component cell's
+// volume and, in the body frame, its centre; every face its component face's area vector turned
+// by the placement; patches, zones and offsets as the header states; bad input rejected.
+#include <numbers>
+#include <stdexcept>
+
+#include <gtest/gtest.h>
+
+#include "auvloop/mesher/composite_grid.hpp"
+#include "auvloop/mesher/cylinder_grid.hpp"
+#include "auvloop/mesher/generators.hpp"
+
+using namespace auvloop::mesher;
+
+namespace {
+struct Pair {
+  Grid channel, box;
+  Pair() {
+    CylinderChannelSpec spec;
+    spec.cells_per_side = 8;
+    spec.radial_cells = 4;
+    spec.downstream_cells = 12;
+    channel = cylinder_channel(spec);
+    BoxPatches p;
+    p.types.fill(PatchType::overset);
+    p.types[2] = PatchType::wall;
+    box = cartesian_box(graded_nodes(-0.05, 0.05, 5), graded_nodes(0, 0.03, 4, 2.0),
+                        graded_nodes(0, 0.01, 1), p, "box");
+    box.zones.push_back({"first", {0, 1, 2}});
+    box.placement = Eigen::Translation3d(0.6, 0.2, 0) *
+                    Eigen::AngleAxisd(std::numbers::pi / 7, Eigen::Vector3d::UnitZ());
+  }
+};
+}  // namespace
+
+TEST(CompositeGrid, IsItsComponentsInTheBodyFrame) {
+  const Pair pair;
+  const Grid* parts[] = {&pair.channel, &pair.box};
+  const CompositeGrid c = composite_grid(parts);
+  const GridGeometry geo = compute_geometry(c.grid);
+  EXPECT_NO_THROW(validate(c.grid, geo));
+  ASSERT_EQ(c.grid.cells, pair.channel.cells + pair.box.cells);
+  EXPECT_EQ(c.grid.faces(), pair.channel.faces() + pair.box.faces());
+  EXPECT_EQ(c.grid.internal_faces(), pair.channel.internal_faces() + pair.box.internal_faces());
+  EXPECT_EQ(c.cell_offset, (std::vector<int>{0, pair.channel.cells}));
+  EXPECT_EQ(c.internal_face_offset, (std::vector<int>{0, pair.channel.internal_faces()}));
+  EXPECT_TRUE(c.grid.placement.matrix().isIdentity());
+  for (std::size_t g = 0; g < 2; ++g) {
+    const Grid& part = *parts[g];
+    const GridGeometry pg = compute_geometry(part);
+    const Eigen::Matrix3d R = part.placement.linear();
+    for (int k = 0; k < part.cells; ++k) {
+      const auto s = static_cast<std::size_t>(k + c.cell_offset[g]);
+      const auto ks = static_cast<std::size_t>(k);
+      ASSERT_NEAR(geo.cell_volume[s], pg.cell_volume[ks], 1e-15 + 1e-12 * pg.cell_volume[ks]);
+      ASSERT_LT((geo.cell_centre[s] - part.placement * pg.cell_centre[ks]).norm(), 1e-13);
+    }
+    for (int f = 0; f < part.internal_faces(); ++f) {
+      const auto s = static_cast<std::size_t>(f + c.internal_face_offset[g]);
+      ASSERT_LT((geo.face_area[s] - R * pg.face_area[static_cast<std::size_t>(f)]).norm(), 1e-15);
+    }
+    ASSERT_EQ(c.patch[g].size(), part.patches.size());
+    for (std::size_t p = 0; p < part.patches.size(); ++p) {
+      const Patch& q = c.grid.patches[static_cast<std::size_t>(c.patch[g][p])];
+      EXPECT_EQ(q.name, part.name + "/" + part.patches[p].name);
+      EXPECT_EQ(q.type, part.patches[p].type);
+      ASSERT_EQ(q.size, part.patches[p].size);
+      for (int i = 0; i < q.size; ++i) {
+        const auto cf = static_cast<std::size_t>(q.start + i);
+        const auto pf = static_cast<std::size_t>(part.patches[p].start + i);
+        ASSERT_EQ(c.grid.owner[cf], part.owner[pf] + c.cell_offset[g]);
+        ASSERT_LT((geo.face_area[cf] - R * pg.face_area[pf]).norm(), 1e-15);
+      }
+    }
+  }
+  // Zones: one per component, then the component's own, renamed and renumbered.
+  ASSERT_EQ(c.grid.zones.size(), 3U);
+  EXPECT_EQ(c.grid.zones[0].name, "cylinder");
+  EXPECT_EQ(c.grid.zones[1].name, "box");
+  EXPECT_EQ(c.grid.zones[1].cells.size(), static_cast<std::size_t>(pair.box.cells));
+  EXPECT_EQ(c.grid.zones[2].name, "box/first");
+  const int o = pair.channel.cells;
+  EXPECT_EQ(c.grid.zones[2].cells, (std::vector<int>{o, o + 1, o + 2}));
+}
+
+TEST(CompositeGrid, RejectsNoComponentsAndTwoOfOneName) {
+  const Pair pair;
+  EXPECT_THROW(composite_grid(std::span<const Grid* const>{}), std::invalid_argument);
+  const Grid* twice[] = {&pair.box, &pair.box};
+  EXPECT_THROW(composite_grid(twice), std::invalid_argument);
+}
