@@ -62,11 +62,6 @@ void Pimple::assemble_momentum(bool final) {
   }
 }
 
-// The explicit part of the effective stress, per unit volume and component j (OpenFOAM's
-// divDevReff): (1 / V) sum_f nu_eff,f [sum_i S_f,i (du_i/dx_j)_f - 2/3 (div U)_f S_f,j], with the
-// face gradients linearly interpolated from the cell gradients (the owner's on boundary faces:
-// those assemble_momentum computed).
-// Zero for uniform nu_eff and divergence-free U in the continuum; it carries grad(nu_t) . grad U^T.
 const std::array<std::vector<Eigen::Vector3d>, 3>& Pimple::velocity_gradient() {
   const auto n = static_cast<std::size_t>(mesh_.cells());
   const auto nb = static_cast<std::size_t>(mesh_.boundary_faces());
@@ -90,6 +85,11 @@ const std::array<std::vector<Eigen::Vector3d>, 3>& Pimple::velocity_gradient() {
   return work_.grad_u;
 }
 
+// The explicit part of the effective stress, per unit volume and component j (OpenFOAM's
+// divDevReff): (1 / V) sum_f nu_eff,f [sum_i S_f,i (du_i/dx_j)_f - 2/3 (div U)_f S_f,j], with the
+// face gradients linearly interpolated from the cell gradients (the owner's on boundary faces:
+// those assemble_momentum computed).
+// Zero for uniform nu_eff and divergence-free U in the continuum; it carries grad(nu_t) . grad U^T.
 void Pimple::transpose_stress() {
   const auto n = static_cast<std::size_t>(mesh_.cells());
   const auto& g = work_.grad_u;  // assemble_momentum's
