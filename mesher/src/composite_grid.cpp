@@ -61,6 +61,38 @@ CompositeGrid composite_grid(std::span<const Grid* const> components) {
       c.patches.push_back(std::move(q));
     }
   }
+  out.cells.reserve(components.size());
+  for (const Grid* g : components) out.cells.push_back(g->cells);
+  return out;
+}
+
+CompositeStencils composite_stencils(const CompositeGrid& composite, const Assembly& assembly) {
+  const auto& grids = assembly.grids;
+  if (grids.size() != composite.cells.size())
+    throw std::invalid_argument("composite stencils: the assembly has " +
+                                std::to_string(grids.size()) + " grids, the composite " +
+                                std::to_string(composite.cells.size()));
+  CompositeStencils out;
+  out.status.reserve(static_cast<std::size_t>(composite.grid.cells));
+  out.offsets.reserve(static_cast<std::size_t>(composite.grid.cells) + 1);
+  for (std::size_t g = 0; g < grids.size(); ++g) {
+    const GridAssembly& a = grids[g];
+    if (a.status.size() != static_cast<std::size_t>(composite.cells[g]) ||
+        a.stencil_offsets.size() != a.status.size() + 1)
+      throw std::invalid_argument("composite stencils: grid " + std::to_string(g) + " has " +
+                                  std::to_string(a.status.size()) + " statuses for " +
+                                  std::to_string(composite.cells[g]) + " cells");
+    for (std::size_t c = 0; c < a.status.size(); ++c) {
+      out.status.push_back(a.status[c]);
+      for (int e = a.stencil_offsets[c]; e < a.stencil_offsets[c + 1]; ++e) {
+        const auto s = static_cast<std::size_t>(e);
+        out.donors.push_back(composite.cell_offset[static_cast<std::size_t>(a.stencil_grids[s])] +
+                             a.stencil_cells[s]);
+        out.weights.push_back(a.stencil_weights[s]);
+      }
+      out.offsets.push_back(static_cast<int>(out.donors.size()));
+    }
+  }
   return out;
 }
 

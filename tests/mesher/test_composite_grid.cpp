@@ -2,7 +2,10 @@
 // The composite grid of an overset pair (a cylinder channel and a box turned and moved over it)
 // against its components: it is a valid grid; every composite cell has its component cell's
 // volume and, in the body frame, its centre; every face its component face's area vector turned
-// by the placement; patches, zones and offsets as the header states; bad input rejected.
+// by the placement; patches, zones and offsets as the header states; bad input rejected. The
+// REMUS coarse system's assembly in composite numbers: every fringe cell's stencil reproduces a
+// linear field at its composite centre, and its donors are active composite cells.
+#include <cmath>
 #include <numbers>
 #include <stdexcept>
 
@@ -11,6 +14,8 @@
 #include "auvloop/mesher/composite_grid.hpp"
 #include "auvloop/mesher/cylinder_grid.hpp"
 #include "auvloop/mesher/generators.hpp"
+#include "auvloop/mesher/grid_system.hpp"
+#include "auvloop/mesher/overset.hpp"
 
 using namespace auvloop::mesher;
 
@@ -90,4 +95,44 @@ TEST(CompositeGrid, RejectsNoComponentsAndTwoOfOneName) {
   EXPECT_THROW(composite_grid(std::span<const Grid* const>{}), std::invalid_argument);
   const Grid* twice[] = {&pair.box, &pair.box};
   EXPECT_THROW(composite_grid(twice), std::invalid_argument);
+}
+
+TEST(CompositeStencils, OnTheRemusCoarseSystemTheyReproduceALinearFieldAtEveryFringeCell) {
+  const auto vehicle = auvloop::geometry::preset_vehicle("remus100");
+  GridSystem sys = build_grid_system(vehicle, mesh_preset("coarse", vehicle));
+  OversetAssembler assembler(sys, vehicle);
+  const double deg = std::numbers::pi / 180;
+  const Assembly a = assembler.assemble({10 * deg, -20 * deg, 5 * deg, 30 * deg});
+  const auto parts = sys.grids();
+  const CompositeGrid c = composite_grid(parts);
+  const GridGeometry geo = compute_geometry(c.grid);
+  EXPECT_NO_THROW(validate(c.grid, geo));
+  const CompositeStencils s = composite_stencils(c, a);
+  ASSERT_EQ(s.status.size(), static_cast<std::size_t>(c.grid.cells));
+  ASSERT_EQ(s.offsets.size(), s.status.size() + 1);
+  const auto f = [](const Eigen::Vector3d& x) { return 3 + 2 * x.x() - 5 * x.y() + 7 * x.z(); };
+  int fringe = 0;
+  for (std::size_t cell = 0; cell < s.status.size(); ++cell) {
+    const int n = s.offsets[cell + 1] - s.offsets[cell];
+    if (s.status[cell] != CellStatus::fringe) {
+      ASSERT_EQ(n, 0) << "cell " << cell;
+      continue;
+    }
+    ++fringe;
+    ASSERT_GT(n, 0) << "fringe cell " << cell << " without donors";
+    double value = 0, scale = 0;
+    for (int e = s.offsets[cell]; e < s.offsets[cell + 1]; ++e) {
+      const auto d = static_cast<std::size_t>(s.donors[static_cast<std::size_t>(e)]);
+      ASSERT_EQ(s.status[d], CellStatus::active) << "donor " << d << " of " << cell;
+      const double w = s.weights[static_cast<std::size_t>(e)];
+      value += w * f(geo.cell_centre[d]);
+      scale += std::abs(w * f(geo.cell_centre[d]));
+    }
+    ASSERT_NEAR(value, f(geo.cell_centre[cell]), 1e-10 * scale) << "fringe cell " << cell;
+  }
+  EXPECT_GT(fringe, 1000);
+  // A mismatched assembly is named, not read out of bounds.
+  Assembly short_one = a;
+  short_one.grids.pop_back();
+  EXPECT_THROW((void)composite_stencils(c, short_one), std::invalid_argument);
 }

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "auvloop/mesher/grid.hpp"
+#include "auvloop/mesher/overset.hpp"
 
 namespace auvloop::mesher {
 
@@ -27,9 +28,25 @@ struct CompositeGrid {
   std::vector<int> cell_offset;           // per component (step 1)
   std::vector<int> internal_face_offset;  // per component: its first internal face
   std::vector<std::vector<int>> patch;    // per component and its patch: the composite patch
+  std::vector<int> cells;                 // per component: its cells
 };
 
 // Throws std::invalid_argument when `components` is empty or two components share a name.
 CompositeGrid composite_grid(std::span<const Grid* const> components);
+
+// An overset assembly in the composite grid's cell numbers: per cell its status, and per fringe
+// cell its stencil (CSR over the cells, empty for the others) of composite donor cells and
+// weights, a donor of component grid h cell k being cell cell_offset[h] + k. The weights are the
+// assembly's, so a field linear in the body frame is reproduced at every fringe centre.
+struct CompositeStencils {
+  std::vector<CellStatus> status;
+  std::vector<int> offsets{0};  // cells + 1
+  std::vector<int> donors;
+  std::vector<double> weights;
+};
+
+// Throws std::invalid_argument when the assembly's grids do not match the composite's
+// components (count or cells).
+CompositeStencils composite_stencils(const CompositeGrid& composite, const Assembly& assembly);
 
 }  // namespace auvloop::mesher
