@@ -132,7 +132,9 @@ BENCHMARK(UpdateOverFull)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
 // The wall distance of every cell of the system (engine::turbulence::WallDistances): measured
 // afresh at 10 deg, then updated after every fin turned by 0.5 deg, in the same iterations (CPU
 // time of this thread, one thread): counters full_ms, update_ms, update_over_full, and the
-// exact queries of each (queries_full, queries_update) against the system's cells.
+// exact queries of each (queries_full, queries_update) against the system's cells; the same
+// update with only the cells in the equations at 10.5 deg measured (active and fringe cells of
+// the assembly): masked_ms, masked_over_full, queries_masked.
 void WallDistanceUpdateOverFull(benchmark::State& state) {
   auto sys = mesher::build_grid_system(remus(), mesher::mesh_preset(preset(state), remus()));
   std::vector<std::unique_ptr<engine::fv::Mesh>> meshes;
@@ -143,22 +145,36 @@ void WallDistanceUpdateOverFull(benchmark::State& state) {
   }
   const double deg = std::numbers::pi / 180;
   const auto fins = sys.fins.size();
+  // The cells in the equations at 10.5 deg (active and fringe) for the masked update.
+  mesher::OversetAssembler assembler(sys, remus());
+  const mesher::Assembly at = assembler.assemble(std::vector<double>(fins, 10.5 * deg));
+  std::vector<std::vector<char>> needed;
+  for (const auto& ga : at.grids) {
+    needed.emplace_back();
+    for (const auto s : ga.status)
+      needed.back().push_back(s == mesher::CellStatus::active || s == mesher::CellStatus::fringe);
+  }
   const tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
-  double full = 0, update = 0;
-  long queries_full = 0, queries_update = 0;
+  double full = 0, update = 0, masked = 0;
+  long queries_full = 0, queries_update = 0, queries_masked = 0;
   for (auto _ : state) {
     mesher::set_fin_deflections(sys, std::vector<double>(fins, 10 * deg));
     const double t0 = thread_cpu_seconds();
     engine::turbulence::WallDistances walls(pointers);
     const double t1 = thread_cpu_seconds();
+    engine::turbulence::WallDistances walls_masked(pointers);
     mesher::set_fin_deflections(sys, std::vector<double>(fins, 10.5 * deg));
     const double t2 = thread_cpu_seconds();
     const auto work = walls.update();
     const double t3 = thread_cpu_seconds();
+    const auto work_masked = walls_masked.update(needed);
+    const double t4 = thread_cpu_seconds();
     full += t1 - t0;
     update += t3 - t2;
+    masked += t4 - t3;
     queries_full = walls.initial_work().queries;
     queries_update = work.queries;
+    queries_masked = work_masked.queries;
   }
   const auto n = static_cast<double>(state.iterations());
   state.SetLabel(preset(state));
@@ -167,6 +183,9 @@ void WallDistanceUpdateOverFull(benchmark::State& state) {
   state.counters["update_over_full"] = update / full;
   state.counters["queries_full"] = static_cast<double>(queries_full);
   state.counters["queries_update"] = static_cast<double>(queries_update);
+  state.counters["masked_ms"] = 1e3 * masked / n;
+  state.counters["masked_over_full"] = masked / full;
+  state.counters["queries_masked"] = static_cast<double>(queries_masked);
   state.counters["cells"] = static_cast<double>(sys.total_cells());
 }
 BENCHMARK(WallDistanceUpdateOverFull)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);

@@ -170,6 +170,34 @@ TEST(WallDistances, AfterAFinTurnsTheyAreTheFreshOnesAndOnlyCellsNearTheFinAreRe
   EXPECT_EQ(as_vector(walls.of(1)), before);
 }
 
+TEST(WallDistances, WithACellMaskOnlyNeededCellsAreMeasuredAndTheRestLater) {
+  TurningFin sys;
+  const engine::fv::Mesh channel(sys.channel), fin(sys.fin);
+  const engine::fv::Mesh* meshes[] = {&channel, &fin};
+  turb::WallDistances walls(meshes);
+  sys.turn(0.4);
+  // Every other cell needed.
+  std::vector<std::vector<char>> needed(2);
+  for (int g = 0; g < 2; ++g)
+    for (int c = 0; c < meshes[g]->cells(); ++c)
+      needed[static_cast<std::size_t>(g)].push_back(c % 2 == 0 ? 1 : 0);
+  const auto masked = walls.update(needed);
+  const turb::WallDistances fresh(meshes);
+  for (int g = 0; g < 2; ++g)
+    for (int c = 0; c < meshes[g]->cells(); c += 2)
+      ASSERT_EQ(walls.of(g)[static_cast<std::size_t>(c)], fresh.of(g)[static_cast<std::size_t>(c)])
+          << "grid " << g << ", cell " << c;
+  // Without a mask (every cell needed, nothing moved since): the others are measured now.
+  const auto rest = walls.update();
+  EXPECT_EQ(rest.pairs, 0);
+  EXPECT_GT(rest.queries, 0);
+  EXPECT_EQ(as_vector(walls.of(0)), as_vector(fresh.of(0)));
+  EXPECT_EQ(as_vector(walls.of(1)), as_vector(fresh.of(1)));
+  needed[1].pop_back();
+  EXPECT_THROW((void)walls.update(needed), std::invalid_argument);
+  EXPECT_GT(masked.queries, 0);
+}
+
 TEST(WallDistances, AreTheSameOnOneAndThreeThreads) {
   TurningFin sys;
   sys.turn(0.3);

@@ -59,19 +59,31 @@ WallDistances::WallDistances(std::span<const fv::Mesh* const> meshes)
     entries_[g].assign(n * H, Entry{});
     distance_[g].assign(n, 0.0);
   }
+  pending_.assign(meshes_.size(), false);
   // 2 and 3 with every pair new.
-  initial_ = refresh(true);
+  initial_ = refresh(true, {});
 }
 
 std::span<const double> WallDistances::of(int grid) const {
   return distance_.at(static_cast<std::size_t>(grid));
 }
 
-WallDistances::Work WallDistances::update() {
-  return refresh(false);
+WallDistances::Work WallDistances::update(std::span<const std::vector<char>> needed) {
+  if (!needed.empty()) {
+    if (needed.size() != meshes_.size())
+      throw std::invalid_argument("wall distance: " + std::to_string(needed.size()) +
+                                  " cell masks for " + std::to_string(meshes_.size()) + " grids");
+    for (std::size_t g = 0; g < meshes_.size(); ++g)
+      if (needed[g].size() != static_cast<std::size_t>(meshes_[g]->cells()))
+        throw std::invalid_argument("wall distance: the cell mask of grid '" +
+                                    meshes_[g]->source_grid().name + "' has " +
+                                    std::to_string(needed[g].size()) + " entries for " +
+                                    std::to_string(meshes_[g]->cells()) + " cells");
+  }
+  return refresh(false, needed);
 }
 
-WallDistances::Work WallDistances::refresh(bool all) {
+WallDistances::Work WallDistances::refresh(bool all, std::span<const std::vector<char>> needed) {
   Work work;
   const std::size_t H = groups_.size();
   for (std::size_t g = 0; g < meshes_.size(); ++g) {
@@ -88,7 +100,11 @@ WallDistances::Work WallDistances::refresh(bool all) {
       any = any || changed[h] != 0;
       work.pairs += changed[h];
     }
-    if (!any) continue;
+    // Unmoved and every cell needed: nothing to do. With a mask, a cell needed now may not have
+    // been before (a hole turned active): step 3 runs for every needed cell.
+    if (!any && needed.empty() && !pending_[g]) continue;
+    pending_[g] = !needed.empty();
+    const char* need = needed.empty() ? nullptr : needed[g].data();
     const auto& old = taken_at_[g];
     auto& entries = entries_[g];
     auto& distance = distance_[g];
@@ -114,7 +130,8 @@ WallDistances::Work WallDistances::refresh(bool all) {
               row[h] = {std::max(0.0, bound), false};
               count[0] += 1;
             }
-            // Step 3: the least entry exact.
+            // Step 3: the least entry exact (needed cells only).
+            if (need && !need[c]) continue;
             for (;;) {
               std::size_t least = 0;
               for (std::size_t h = 1; h < H; ++h)

@@ -57,8 +57,12 @@ class WallDistances {
     long bounds = 0;   // entries replaced by a bound
     long queries = 0;  // exact distances measured (AABB-tree queries)
   };
-  // Step 4 for the grids' current placements.
-  Work update();
+  // Step 4 for the grids' current placements. `needed`, if given, has one mask per grid (one
+  // entry per cell, nonzero: needed): step 3 runs for the needed cells only (the cells in the
+  // equations; hole cells need no distance), every cell's entries stay valid bounds, and a cell
+  // needed again later is measured then; the distance of a cell not needed is its last one.
+  // Throws std::invalid_argument when the masks do not match the grids.
+  Work update(std::span<const std::vector<char>> needed = {});
   // The construction's work (every pair changed: one bound per entry).
   [[nodiscard]] const Work& initial_work() const { return initial_; }
 
@@ -73,7 +77,7 @@ class WallDistances {
     double value = 0;
     bool exact = false;
   };
-  Work refresh(bool all);
+  Work refresh(bool all, std::span<const std::vector<char>> needed);
 
   std::vector<const fv::Mesh*> meshes_;
   std::vector<Group> groups_;
@@ -82,6 +86,7 @@ class WallDistances {
   std::vector<std::vector<Eigen::Isometry3d>> taken_at_;
   std::vector<std::vector<Entry>> entries_;
   std::vector<std::vector<double>> distance_;
+  std::vector<bool> pending_;  // per grid: the last update skipped cells (a mask)
   Work initial_;
 };
 
