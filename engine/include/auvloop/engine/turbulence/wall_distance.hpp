@@ -15,7 +15,9 @@
 //      sphere's, max(0, |T_hg x_c - s_h| - R_h), and after a motion also the old entry e less
 //      the distance the centre moved relative to h, e - |T_hg x_c - T'_hg x_c| (T' the old
 //      placement; a distance changes by at most the distance its point moves), whichever is
-//      larger: a small turn leaves most entries close to their old, exact values;
+//      larger (each lowered by 1e-12 of the magnitudes it is made of, so that round-off never
+//      lifts it above the exact value): a small turn leaves most entries close to their old,
+//      exact values;
 //   3. a cell's distance is its least entry, which must be exact: while the least entry (the
 //      first of equal ones) is a bound, it is replaced by the exact distance. An exact value is
 //      never below its bound, so a cell needs at most one query per group and the result is the
