@@ -33,11 +33,11 @@ CompositeGrid composite_grid(std::span<const Grid* const> components) {
     for (const auto& p : g->points) c.points.push_back(g->placement * p);
     c.cells += g->cells;
   }
+  std::vector<int> pts;  // one face's points, reused
   const auto add = [&](std::size_t gi, int f) {
     const Grid& g = *components[gi];
-    std::vector<int> pts(static_cast<std::size_t>(g.face_size(f)));
-    for (int k = 0; k < g.face_size(f); ++k)
-      pts[static_cast<std::size_t>(k)] = g.face_point(f, k) + point_offset[gi];
+    pts.clear();
+    for (int k = 0; k < g.face_size(f); ++k) pts.push_back(g.face_point(f, k) + point_offset[gi]);
     c.add_face(pts, g.owner[static_cast<std::size_t>(f)] + out.cell_offset[gi]);
   };
   // 3: internal faces, then the patches.
@@ -61,27 +61,25 @@ CompositeGrid composite_grid(std::span<const Grid* const> components) {
       c.patches.push_back(std::move(q));
     }
   }
-  out.cells.reserve(components.size());
-  for (const Grid* g : components) out.cells.push_back(g->cells);
   return out;
 }
 
 CompositeStencils composite_stencils(const CompositeGrid& composite, const Assembly& assembly) {
   const auto& grids = assembly.grids;
-  if (grids.size() != composite.cells.size())
+  if (grids.size() != composite.cell_offset.size())
     throw std::invalid_argument("composite stencils: the assembly has " +
                                 std::to_string(grids.size()) + " grids, the composite " +
-                                std::to_string(composite.cells.size()));
+                                std::to_string(composite.cell_offset.size()));
   CompositeStencils out;
   out.status.reserve(static_cast<std::size_t>(composite.grid.cells));
   out.offsets.reserve(static_cast<std::size_t>(composite.grid.cells) + 1);
   for (std::size_t g = 0; g < grids.size(); ++g) {
     const GridAssembly& a = grids[g];
-    if (a.status.size() != static_cast<std::size_t>(composite.cells[g]) ||
+    if (a.status.size() != static_cast<std::size_t>(composite.cells_of(g)) ||
         a.stencil_offsets.size() != a.status.size() + 1)
       throw std::invalid_argument("composite stencils: grid " + std::to_string(g) + " has " +
                                   std::to_string(a.status.size()) + " statuses for " +
-                                  std::to_string(composite.cells[g]) + " cells");
+                                  std::to_string(composite.cells_of(g)) + " cells");
     for (std::size_t c = 0; c < a.status.size(); ++c) {
       out.status.push_back(a.status[c]);
       for (int e = a.stencil_offsets[c]; e < a.stencil_offsets[c + 1]; ++e) {

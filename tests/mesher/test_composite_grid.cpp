@@ -50,6 +50,8 @@ TEST(CompositeGrid, IsItsComponentsInTheBodyFrame) {
   EXPECT_EQ(c.grid.faces(), pair.channel.faces() + pair.box.faces());
   EXPECT_EQ(c.grid.internal_faces(), pair.channel.internal_faces() + pair.box.internal_faces());
   EXPECT_EQ(c.cell_offset, (std::vector<int>{0, pair.channel.cells}));
+  EXPECT_EQ(c.cells_of(0), pair.channel.cells);
+  EXPECT_EQ(c.cells_of(1), pair.box.cells);
   EXPECT_EQ(c.internal_face_offset, (std::vector<int>{0, pair.channel.internal_faces()}));
   EXPECT_TRUE(c.grid.placement.matrix().isIdentity());
   for (std::size_t g = 0; g < 2; ++g) {

@@ -23,19 +23,18 @@ void Pimple::assemble_momentum(bool final) {
   // grad U once, for the convection scheme, the non-orthogonal correction and the transpose
   // stress alike (each would otherwise compute it again from the same values); with a model,
   // that of its strain when U has not changed since.
-  static const std::vector<Eigen::Vector3d> none;
-  std::array<const std::vector<Eigen::Vector3d>*, 3> g{&none, &none, &none};
+  std::array<std::span<const Eigen::Vector3d>, 3> g;  // empty: not needed
   if (turbulence_) {
     const auto& all = velocity_gradient();
-    for (std::size_t i = 0; i < 3; ++i) g[i] = &all[i];
+    for (std::size_t i = 0; i < 3; ++i) g[i] = all[i];
     transpose_stress();
   } else if (settings_.convection != Convection::upwind || !mesh_.orthogonal()) {
-    work_.grad_u_valid = false;  // only the active components, below
+    for (auto& of : work_.grad_u_of) of.clear();  // only the active components, below
     for (std::size_t i = 0; i < 3; ++i) {
       if (!active_[i]) continue;
       work_.grad_u[i].resize(static_cast<std::size_t>(mesh_.cells()));
       mesh_.gradient(U.c[i].cells, U.c[i].boundary, work_.grad_u[i]);
-      g[i] = &work_.grad_u[i];
+      g[i] = work_.grad_u[i];
     }
   }
   for (std::size_t i = 0; i < 3; ++i) {
@@ -43,9 +42,9 @@ void Pimple::assemble_momentum(bool final) {
     Matrix& eq = momentum_.eq[i];
     // div(nu_eff grad U) implicit and div(nu_eff dev2(grad U^T)) explicit with a turbulence
     // model, else laplacian(nu, U); no time derivative when steady.
-    const auto convection = div(mesh_, phi, U.c[i], settings_.convection, *g[i]);
-    const auto diffusion = turbulence_ ? laplacian(mesh_, turbulence_->nu_eff(), U.c[i], *g[i])
-                                       : laplacian(mesh_, settings_.nu, U.c[i], *g[i]);
+    const auto convection = div(mesh_, phi, U.c[i], settings_.convection, g[i]);
+    const auto diffusion = turbulence_ ? laplacian(mesh_, turbulence_->nu_eff(), U.c[i], g[i])
+                                       : laplacian(mesh_, settings_.nu, U.c[i], g[i]);
     if (settings_.steady) {
       eq = convection - diffusion;
     } else {
@@ -72,7 +71,7 @@ const std::array<std::vector<Eigen::Vector3d>, 3>& Pimple::velocity_gradient() {
            std::memcmp(of[i].data(), u.cells.data(), n * sizeof(double)) == 0 &&
            std::memcmp(of[i].data() + n, u.boundary.data(), nb * sizeof(double)) == 0;
   };
-  if (work_.grad_u_valid && same(0) && same(1) && same(2)) return work_.grad_u;
+  if (same(0) && same(1) && same(2)) return work_.grad_u;
   for (std::size_t i = 0; i < 3; ++i) {
     const auto& u = U.c[i];
     work_.grad_u[i].resize(n);
@@ -81,7 +80,6 @@ const std::array<std::vector<Eigen::Vector3d>, 3>& Pimple::velocity_gradient() {
     std::copy(u.cells.begin(), u.cells.end(), of[i].begin());
     std::copy(u.boundary.begin(), u.boundary.end(), of[i].begin() + static_cast<std::ptrdiff_t>(n));
   }
-  work_.grad_u_valid = true;
   return work_.grad_u;
 }
 

@@ -28,7 +28,10 @@ struct CompositeGrid {
   std::vector<int> cell_offset;           // per component (step 1)
   std::vector<int> internal_face_offset;  // per component: its first internal face
   std::vector<std::vector<int>> patch;    // per component and its patch: the composite patch
-  std::vector<int> cells;                 // per component: its cells
+  [[nodiscard]] int cells_of(std::size_t component) const {
+    const std::size_t next = component + 1;
+    return (next < cell_offset.size() ? cell_offset[next] : grid.cells) - cell_offset[component];
+  }
 };
 
 // Throws std::invalid_argument when `components` is empty or two components share a name.

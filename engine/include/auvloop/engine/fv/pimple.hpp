@@ -167,10 +167,9 @@ class Pimple {
     std::array<std::vector<double>, 3> HbyA;
     std::vector<Eigen::Vector3d> gp;
     // grad U per component (velocity_gradient()) and the U (cells, then boundary values) it is
-    // of.
+    // of; grad_u_of empty when grad_u holds something else (a laminar assembly's components).
     std::array<std::vector<Eigen::Vector3d>, 3> grad_u;
     std::array<std::vector<double>, 3> grad_u_of;
-    bool grad_u_valid = false;
     std::array<std::vector<double>, 3> transpose;
     Matrix p_eq;
   };
