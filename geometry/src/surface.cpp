@@ -206,6 +206,31 @@ void close_hull_end(TriangleBuilder& tb, const std::vector<int>& rim, double x, 
 
 }  // namespace
 
+SurfaceMesh cylinder_surface(double cx, double cy, double radius, double z0, double z1,
+                             int segments) {
+  if (!(radius > 0) || !(z1 > z0) || segments < 3)
+    throw GeometryError(fmt::format(
+        "cylinder_surface: need radius > 0, z1 > z0 and at least 3 segments, got {}, {} .. {}, {}",
+        radius, z0, z1, segments));
+  TriangleBuilder b;
+  std::vector<int> lo, hi;
+  for (int k = 0; k < segments; ++k) {
+    const double a = 2 * kPi * k / segments;
+    const double x = cx + radius * std::cos(a), y = cy + radius * std::sin(a);
+    lo.push_back(b.add({x, y, z0}));
+    hi.push_back(b.add({x, y, z1}));
+  }
+  const int c0 = b.add({cx, cy, z0}), c1 = b.add({cx, cy, z1});
+  for (std::size_t k = 0; k < lo.size(); ++k) {
+    const std::size_t n = (k + 1) % lo.size();
+    b.triangle(lo[k], lo[n], hi[n]);  // counter-clockwise seen from outside: outward normals
+    b.triangle(lo[k], hi[n], hi[k]);
+    b.triangle(c0, lo[n], lo[k]);
+    b.triangle(c1, hi[k], hi[n]);
+  }
+  return b.mesh("cylinder");
+}
+
 SurfaceMesh hull_surface(const MyringProfile& profile, double cb_station, SurfaceResolution res) {
   const double h = res.edge_length;
   if (!(h > 0)) throw GeometryError("surface resolution: edge length must be positive");

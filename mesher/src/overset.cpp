@@ -10,21 +10,30 @@
 #include <stdexcept>
 #include <utility>
 
-#include <CGAL/Orthogonal_k_neighbor_search.h>
-#include <CGAL/Search_traits_3.h>
-#include <CGAL/Search_traits_adapter.h>
-#include <CGAL/Simple_cartesian.h>
-#include <CGAL/property_map.h>
+#include <fmt/format.h>
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
 #include <Eigen/SparseLU>
-#include <boost/iterator/zip_iterator.hpp>
 
 #include "auvloop/geometry/myring.hpp"
 #include "auvloop/geometry/surface_query.hpp"
 #include "auvloop/mesher/fin_grid.hpp"
+#include "overset_search.hpp"
 
 namespace auvloop::mesher {
+
+using overset_detail::beyond;
+using overset_detail::Box;
+using overset_detail::GridData;
+using overset_detail::kInf;
+using overset_detail::KPoint;
+using overset_detail::KSearch;
+using overset_detail::linear_weights;
+using overset_detail::locate_cell;
+using overset_detail::nearest;
+using overset_detail::nearest_first;
+using overset_detail::prepare;
+using overset_detail::violation;
 
 const char* to_string(CellStatus s) {
   switch (s) {
@@ -53,252 +62,6 @@ int GridAssembly::chains() const {
 }
 
 namespace {
-using SK = CGAL::Simple_cartesian<double>;
-using KPoint = SK::Point_3;
-using PointAndIndex = boost::tuple<KPoint, int>;
-using KTraits =
-    CGAL::Search_traits_adapter<PointAndIndex, CGAL::Nth_of_tuple_property_map<0, PointAndIndex>,
-                                CGAL::Search_traits_3<SK>>;
-using KSearch = CGAL::Orthogonal_k_neighbor_search<KTraits>;
-using KTree = KSearch::Tree;
-
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
-struct Box {
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(kInf), hi = Eigen::Vector3d::Constant(-kInf);
-  void add(const Eigen::Vector3d& p) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  [[nodiscard]] bool contains(const Eigen::Vector3d& p, double margin = 0) const {
-    return (p.array() >= lo.array() - margin).all() && (p.array() <= hi.array() + margin).all();
-  }
-};
-
-// One component grid with what the assembly needs: geometry in its own frame, cell-to-face
-// addressing, cell sizes, a k-d tree of cell centres, and its place in the priority order.
-struct GridData {
-  const Grid* grid = nullptr;
-  GridGeometry geo;
-  std::vector<int> cell_face_offsets, cell_faces;
-  std::vector<double> size;  // cube root of the cell volume
-  std::vector<char> outer;   // owns a face of an overset patch
-  std::vector<int> ids;
-  std::vector<KPoint> centres;
-  std::unique_ptr<KTree> tree;
-  Box local_box;
-  std::vector<double> radius;  // per cell: largest distance from its centre to one of its points
-  double largest_radius = 0;   // over all cells
-  int priority = 0;
-  int fin = -1;  // index of the fin it belongs to, -1 for hull and background
-
-  [[nodiscard]] int other(int face, int cell) const {
-    const auto f = static_cast<std::size_t>(face);
-    if (face >= grid->internal_faces()) return -1;
-    return grid->owner[f] == cell ? grid->neighbour[f] : grid->owner[f];
-  }
-  template <class F>
-  void each_face(int cell, F&& fn) const {
-    const auto c = static_cast<std::size_t>(cell);
-    for (int k = cell_face_offsets[c]; k < cell_face_offsets[c + 1]; ++k)
-      fn(cell_faces[static_cast<std::size_t>(k)]);
-  }
-  template <class F>
-  void each_neighbour(int cell, F&& fn) const {
-    each_face(cell, [&](int f) {
-      const int n = other(f, cell);
-      if (n >= 0) fn(n);
-    });
-  }
-};
-
-GridData prepare(const Grid& g, int priority, int fin) {
-  GridData d;
-  d.grid = &g;
-  d.priority = priority;
-  d.fin = fin;
-  d.geo = compute_geometry(g);
-  const auto nc = static_cast<std::size_t>(g.cells);
-  std::vector<int> count(nc + 1, 0);
-  for (int f = 0; f < g.faces(); ++f) {
-    ++count[static_cast<std::size_t>(g.owner[static_cast<std::size_t>(f)]) + 1];
-    if (f < g.internal_faces())
-      ++count[static_cast<std::size_t>(g.neighbour[static_cast<std::size_t>(f)]) + 1];
-  }
-  for (std::size_t c = 0; c < nc; ++c) count[c + 1] += count[c];
-  d.cell_face_offsets = count;
-  d.cell_faces.resize(static_cast<std::size_t>(count[nc]));
-  auto fill = count;
-  for (int f = 0; f < g.faces(); ++f) {
-    const auto o = static_cast<std::size_t>(g.owner[static_cast<std::size_t>(f)]);
-    d.cell_faces[static_cast<std::size_t>(fill[o]++)] = f;
-    if (f < g.internal_faces()) {
-      const auto n = static_cast<std::size_t>(g.neighbour[static_cast<std::size_t>(f)]);
-      d.cell_faces[static_cast<std::size_t>(fill[n]++)] = f;
-    }
-  }
-  d.outer.assign(nc, 0);
-  for (const auto& p : g.patches)
-    if (p.type == PatchType::overset)
-      for (int f = p.start; f < p.start + p.size; ++f)
-        d.outer[static_cast<std::size_t>(g.owner[static_cast<std::size_t>(f)])] = 1;
-  d.size.resize(nc);
-  for (std::size_t c = 0; c < nc; ++c) {
-    d.size[c] = std::cbrt(d.geo.cell_volume[c]);
-    const auto& x = d.geo.cell_centre[c];
-    d.centres.emplace_back(x.x(), x.y(), x.z());
-    d.ids.push_back(static_cast<int>(c));
-  }
-  for (const auto& p : g.points) d.local_box.add(p);
-  d.radius.assign(static_cast<std::size_t>(g.cells), 0.0);
-  for (int f = 0; f < g.faces(); ++f) {
-    const auto fu = static_cast<std::size_t>(f);
-    for (int k = g.face_offsets[fu]; k < g.face_offsets[fu + 1]; ++k) {
-      const auto& p =
-          g.points[static_cast<std::size_t>(g.face_points[static_cast<std::size_t>(k)])];
-      for (int c : {g.owner[fu], f < g.internal_faces() ? g.neighbour[fu] : -1})
-        if (c >= 0) {
-          auto& r = d.radius[static_cast<std::size_t>(c)];
-          r = std::max(r, (p - d.geo.cell_centre[static_cast<std::size_t>(c)]).norm());
-        }
-    }
-  }
-  for (double r : d.radius) d.largest_radius = std::max(d.largest_radius, r);
-  d.tree = std::make_unique<KTree>(
-      boost::make_zip_iterator(boost::make_tuple(d.centres.begin(), d.ids.begin())),
-      boost::make_zip_iterator(boost::make_tuple(d.centres.end(), d.ids.end())));
-  return d;
-}
-
-// Signed distance of x beyond the face plane, along the cell's outward normal.
-double beyond(const GridData& d, int face, int cell, const Eigen::Vector3d& x) {
-  const auto f = static_cast<std::size_t>(face);
-  const Eigen::Vector3d& S = d.geo.face_area[f];
-  const double sign = d.grid->owner[f] == cell ? 1.0 : -1.0;
-  return sign * S.dot(x - d.geo.face_centre[f]) / S.norm();
-}
-
-// How far x lies outside a cell: the largest distance beyond any of its face planes (<= 0 inside).
-double violation(const GridData& d, int cell, const Eigen::Vector3d& x) {
-  double worst = -kInf;
-  d.each_face(cell, [&](int f) { worst = std::max(worst, beyond(d, f, cell, x)); });
-  return worst;
-}
-
-// A walk from cell c towards x across the face x lies furthest beyond: the cell containing x, or
-// -1 when the walk leaves the grid or circles among warped cells.
-int walk(const GridData& d, const Eigen::Vector3d& x, int c) {
-  for (int step = 0; step < 200 && c >= 0; ++step) {
-    int best_face = -1;
-    double best = 1e-12 * d.size[static_cast<std::size_t>(c)];
-    d.each_face(c, [&](int f) {
-      const double s = beyond(d, f, c, x);
-      if (s > best) {
-        best = s;
-        best_face = f;
-      }
-    });
-    if (best_face < 0) return c;
-    c = d.other(best_face, c);
-  }
-  return -1;
-}
-
-// The cell containing x (grid frame): a walk from `seed` (a previous donor), else from the nearest
-// cell centre (k-d tree). A walk can end on the boundary although x is inside the grid (the fluid
-// round a body is not convex: a walk from a distant seed can run into the wall), or circle among
-// warped cells, or stop in the gap their face planes leave; then walks from the 16 nearest cells,
-// and last those cells by their face planes. -1: x is in no cell.
-int locate_cell(const GridData& d, const Eigen::Vector3d& x, int seed) {
-  if (!d.local_box.contains(x)) return -1;
-  const KPoint q(x.x(), x.y(), x.z());
-  if (seed >= 0) {
-    const int c = walk(d, x, seed);
-    if (c >= 0) return c;
-  }
-  {
-    KSearch search(*d.tree, q, 1);
-    const int c = walk(d, x, boost::get<1>(search.begin()->first));
-    if (c >= 0) return c;
-  }
-  KSearch search(*d.tree, q, 16);
-  bool first = true;                // the nearest cell's walk has just failed
-  for (const auto& hit : search) {  // walks from the nearest cells: warped cells leave gaps
-    if (std::exchange(first, false)) continue;
-    const int c = walk(d, x, boost::get<1>(hit.first));
-    if (c >= 0) return c;
-  }
-  int best_cell = -1;
-  double best = kInf;
-  for (const auto& hit : search) {
-    const int cell = boost::get<1>(hit.first);
-    const double v = violation(d, cell, x) / d.size[static_cast<std::size_t>(cell)];
-    if (v < best) {
-      best = v;
-      best_cell = cell;
-    }
-  }
-  // Warped faces: accept a point within a thousandth of the cell size outside its face planes.
-  return best <= 1e-3 ? best_cell : -1;
-}
-
-// The cell whose centre is nearest to x (grid frame).
-int nearest(const GridData& d, const Eigen::Vector3d& x) {
-  KSearch search(*d.tree, KPoint(x.x(), x.y(), x.z()), 1);
-  return boost::get<1>(search.begin()->first);
-}
-
-// Keeps the (at most) 16 cells of a fallback stencil whose centres are nearest to x: the weights
-// stay local, and their round-off (n^2 eps) small.
-void nearest_first(const GridData& d, const Eigen::Vector3d& x, std::vector<int>& cells) {
-  const auto dist = [&](int c) {
-    return (d.geo.cell_centre[static_cast<std::size_t>(c)] - x).squaredNorm();
-  };
-  std::sort(cells.begin(), cells.end(), [&](int a, int b) { return dist(a) < dist(b); });
-  if (cells.size() > 16) cells.resize(16);
-}
-
-// Interpolation weights reproducing linear fields: minimise sum w_i^2 / D_i subject to
-// sum w_i = 1 and sum w_i (x_i - x) = 0, D_i = 1 / |x_i - x|^2 (near cells weigh more).
-bool linear_weights(const std::vector<Eigen::Vector3d>& xs, const Eigen::Vector3d& x,
-                    std::vector<double>& w) {
-  const auto n = static_cast<Eigen::Index>(xs.size());
-  if (n < 4) return false;
-  // Offsets in units of the stencil's extent keep the system well scaled; the constraints (and so
-  // the exactness for linear fields) do not depend on that scale or on D.
-  double h = 0;
-  for (const auto& p : xs) h = std::max(h, (p - x).norm());
-  Eigen::MatrixXd A(4, n);
-  Eigen::VectorXd D(n);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const Eigen::Vector3d r = (xs[static_cast<std::size_t>(i)] - x) / h;
-    A.col(i) << 1.0, r;
-    D(i) = 1.0 / (r.squaredNorm() + 1e-3);
-  }
-  // Minimum-norm solution of B v = e1 with B = A D^(1/2), w = D^(1/2) v, through a QR
-  // factorisation of B^T (n x 4): v = Q R^-T e1. Unlike the normal equations (A D A^T) y = e1 it
-  // does not square the condition number, which matters for fallback stencils that extrapolate;
-  // two steps of iterative refinement on the constraint residual e1 - A w bring sum w = 1 and
-  // sum w r = 0 back to round-off.
-  const Eigen::VectorXd sqrt_d = D.cwiseSqrt();
-  const Eigen::MatrixXd Bt = (A * sqrt_d.asDiagonal()).transpose();
-  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(Bt);
-  const Eigen::Matrix4d R = qr.matrixQR().topLeftCorner<4, 4>().triangularView<Eigen::Upper>();
-  const double scale = std::abs(R(0, 0));
-  for (int k = 0; k < 4; ++k)
-    if (!(std::abs(R(k, k)) > 1e-8 * scale)) return false;  // centres in a plane
-  const Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(n, 4);
-  const auto solve = [&](const Eigen::Vector4d& rhs) -> Eigen::VectorXd {
-    const Eigen::Vector4d y = R.transpose().triangularView<Eigen::Lower>().solve(rhs);
-    return sqrt_d.asDiagonal() * (Q * y);
-  };
-  const Eigen::Vector4d e1(1, 0, 0, 0);
-  Eigen::VectorXd wv = solve(e1);
-  for (int step = 0; step < 2; ++step) wv += solve(e1 - A * wv);
-  w.assign(wv.data(), wv.data() + n);
-  return true;
-}
-
 // How far outside its grid's wall (in edges of the hole test's triangulated surfaces) a fringe
 // centre may lie and still take the nearest cell as a containing donor: the triangulation lies
 // inside the exact body by at most its sagitta, edge^2 / (8 radius), 0.04 mm for 4 mm edges on the
@@ -327,14 +90,20 @@ double cover_band(const OversetSettings& s, double size) {
 }  // namespace
 
 struct OversetAssembler::Impl {
-  GridSystem* sys = nullptr;
+  void init(const std::vector<OversetComponent>& components, const std::vector<int>& fin_of);
   OversetSettings settings;
   std::vector<GridData> grids;  // GridSystem::grids() order
   std::vector<int> order;       // grid indices, highest priority first
-  std::unique_ptr<geometry::SurfaceQuery> hull;
-  Box hull_box;
-  std::vector<std::unique_ptr<geometry::SurfaceQuery>> fins;
-  std::vector<Box> fin_boxes;
+  GridSystem* sys = nullptr;    // a vehicle's system (fins, update()); null for general systems
+  // The bodies the grids fit, each in the frame of its grid (the hull in the body frame, a fin
+  // undeflected in its fin grid's frame): built once, so moving a grid costs no new tree.
+  struct Solid {
+    std::unique_ptr<geometry::SurfaceQuery> query;
+    Box local;
+    int grid = -1;
+  };
+  std::vector<Solid> solids;
+  bool planar = false;  // every grid one cell thick (2D): weights and sizes in the plane
   std::vector<std::vector<double>> depth;      // per grid: distance from holes and outer edge (m)
   std::vector<std::vector<double>> wall_dist;  // per grid: distance of cell centres from its wall
   std::vector<std::vector<char>> wall_hole;    // per grid: centre inside another solid
@@ -419,10 +188,11 @@ struct OversetAssembler::Impl {
     return b;
   }
 
-  // Body-frame box of fin i's solid at its present placement.
-  [[nodiscard]] Box fin_body_box(int i) const {
-    const auto& local = fin_boxes[static_cast<std::size_t>(i)];
-    const auto& placement = sys->fins[static_cast<std::size_t>(i)].placement;
+  // Body-frame box of the solid of grid g at its present placement.
+  [[nodiscard]] Box solid_body_box(int g) const {
+    const auto& solid = solids[static_cast<std::size_t>(grids[static_cast<std::size_t>(g)].solid)];
+    const auto& local = solid.local;
+    const auto& placement = grids[static_cast<std::size_t>(g)].grid->placement;
     Box b;
     for (int k = 0; k < 8; ++k)
       b.add(placement * Eigen::Vector3d((k & 1) ? local.hi.x() : local.lo.x(),
@@ -441,12 +211,11 @@ struct OversetAssembler::Impl {
   // (its wall is that body's surface, and the centres of thin wall cells over a curved wall may
   // lie inside the finer triangulation by the chord sagitta).
   [[nodiscard]] bool in_body(const Eigen::Vector3d& x, int g) const {
-    const int own_fin = grids[static_cast<std::size_t>(g)].fin;
-    if (g != 0 && hull_box.contains(x) && hull->inside(x)) return true;
-    for (std::size_t i = 0; i < fins.size(); ++i) {
-      if (static_cast<int>(i) == own_fin) continue;
-      const Eigen::Vector3d xl = sys->fins[i].placement.inverse() * x;
-      if (fin_boxes[i].contains(xl) && fins[i]->inside(xl)) return true;
+    for (const auto& solid : solids) {
+      if (solid.grid == g) continue;
+      const Eigen::Vector3d xl =
+          grids[static_cast<std::size_t>(solid.grid)].grid->placement.inverse() * x;
+      if (solid.local.contains(xl) && solid.query->inside(xl)) return true;
     }
     return false;
   }
@@ -619,7 +388,7 @@ struct OversetAssembler::Impl {
       if (!containing) nearest_first(hd, xl, stencil);
       std::vector<Eigen::Vector3d> xs;
       for (int c : stencil) xs.push_back(hd.geo.cell_centre[static_cast<std::size_t>(c)]);
-      if (linear_weights(xs, xl, w)) return true;
+      if (linear_weights(xs, xl, w, planar)) return true;
     }
     if (containing) return false;
     // Last resort, when the rings stay inside a thick hole: the nearest active cell centres.
@@ -633,7 +402,7 @@ struct OversetAssembler::Impl {
       xs.push_back(hd.geo.cell_centre[static_cast<std::size_t>(cell)]);
       if (stencil.size() == 12) break;
     }
-    return linear_weights(xs, xl, w);
+    return linear_weights(xs, xl, w, planar);
   }
 
   // Donor stencil of one fringe cell; false when no grid offers an active donor. First a cell of
@@ -1017,7 +786,7 @@ struct OversetAssembler::Impl {
     if (outranked(a, g, c, dg, fallback)) return false;
     std::vector<Eigen::Vector3d> xs;
     for (int s : cells) xs.push_back(hd.geo.cell_centre[static_cast<std::size_t>(s)]);
-    return linear_weights(xs, xl, w);
+    return linear_weights(xs, xl, w, planar);
   }
 
   // A stencil between two grids that did not move is kept as it is (weights included) when its
@@ -1058,6 +827,64 @@ struct OversetAssembler::Impl {
   }
 };
 
+namespace {
+Box bounding_box(const geometry::SurfaceMesh& mesh) {
+  Box b;
+  for (const auto& v : mesh.vertices()) {
+    const auto& p = mesh.point(v);
+    b.add(Eigen::Vector3d(p.x(), p.y(), p.z()));
+  }
+  return b;
+}
+
+bool one_cell_thick(const Grid& g) {
+  return std::any_of(g.patches.begin(), g.patches.end(),
+                     [](const Patch& p) { return p.type == PatchType::empty && p.size > 0; });
+}
+}  // namespace
+
+// Every grid with its solid (fin: the vehicle's fin index, -1 for the others), the priority order
+// (stable: equal priorities keep the given order), and the fixed per-cell data.
+void OversetAssembler::Impl::init(const std::vector<OversetComponent>& components,
+                                  const std::vector<int>& fin_of) {
+  planar = std::all_of(components.begin(), components.end(),
+                       [](const OversetComponent& c) { return one_cell_thick(*c.grid); });
+  for (std::size_t g = 0; g < components.size(); ++g) {
+    const auto& comp = components[g];
+    int solid = -1;
+    if (comp.solid != nullptr) {
+      solid = static_cast<int>(solids.size());
+      solids.push_back({std::make_unique<geometry::SurfaceQuery>(*comp.solid),
+                        bounding_box(*comp.solid), static_cast<int>(g)});
+    }
+    grids.push_back(prepare(*comp.grid, comp.priority, fin_of[g], solid, planar));
+  }
+  for (std::size_t g = 0; g < grids.size(); ++g) order.push_back(static_cast<int>(g));
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    return grids[static_cast<std::size_t>(a)].priority >
+           grids[static_cast<std::size_t>(b)].priority;
+  });
+  // Wall distances in each grid's own frame: fixed, since a grid moves with its solid.
+  for (const auto& d : grids) {
+    const auto n = static_cast<std::size_t>(d.grid->cells);
+    std::vector<double> w(n, kInf);
+    if (d.solid >= 0) {
+      const auto& q = *solids[static_cast<std::size_t>(d.solid)].query;
+      for (std::size_t c = 0; c < n; ++c) w[c] = std::abs(q.signed_distance(d.geo.cell_centre[c]));
+    }
+    std::vector<double> s(n);
+    for (std::size_t c = 0; c < n; ++c)
+      s[c] = std::max(0.0, w[c] - cover_band(settings, d.size[c]));
+    slack.push_back(std::move(s));
+    wall_dist.push_back(std::move(w));
+    wall_hole.emplace_back(n, 0);
+    depth.emplace_back(n, kInf);
+    marks.emplace_back(n, 0);
+    stamps.push_back(0);
+    found.push_back(-1);
+  }
+}
+
 OversetAssembler::OversetAssembler(GridSystem& system, const geometry::Vehicle& vehicle,
                                    OversetSettings settings)
     : impl_(std::make_unique<Impl>()) {
@@ -1066,50 +893,34 @@ OversetAssembler::OversetAssembler(GridSystem& system, const geometry::Vehicle& 
   m.settings = settings;
   const auto hull_mesh = geometry::hull_surface(geometry::MyringProfile(vehicle.hull),
                                                 vehicle.mass.cb_station, {settings.surface_edge});
-  for (const auto& v : hull_mesh.vertices()) {
-    const auto& p = hull_mesh.point(v);
-    m.hull_box.add(Eigen::Vector3d(p.x(), p.y(), p.z()));
+  std::vector<geometry::SurfaceMesh> fin_meshes;
+  for (const auto& fin : system.fin_geometry)
+    fin_meshes.push_back(geometry::fin_surface(fin, 0.0, {settings.surface_edge}));
+  // Priorities: fins, then hull, then background (the finest, nearest-wall grid wins).
+  std::vector<OversetComponent> components{{&system.hull, 1, &hull_mesh}};
+  std::vector<int> fin_of{-1};
+  for (std::size_t i = 0; i < system.fins.size(); ++i) {
+    components.push_back({&system.fins[i], 2, &fin_meshes[i]});
+    fin_of.push_back(static_cast<int>(i));
   }
-  m.hull = std::make_unique<geometry::SurfaceQuery>(hull_mesh);
-  m.grids.push_back(prepare(system.hull, 1, -1));
-  for (std::size_t i = 0; i < system.fins.size(); ++i)
-    m.grids.push_back(prepare(system.fins[i], 2, static_cast<int>(i)));
-  m.grids.push_back(prepare(system.background, 0, -1));
-  for (std::size_t i = 1; i + 1 < m.grids.size(); ++i) m.order.push_back(static_cast<int>(i));
-  m.order.push_back(0);
-  m.order.push_back(static_cast<int>(m.grids.size()) - 1);
+  components.push_back({&system.background, 0, nullptr});
+  fin_of.push_back(-1);
+  m.init(components, fin_of);
   m.profile = std::make_unique<geometry::MyringProfile>(vehicle.hull);
-  for (const auto& fin : system.fin_geometry) {
-    const auto mesh = geometry::fin_surface(fin, 0.0, {settings.surface_edge});
-    Box b;
-    for (const auto& v : mesh.vertices()) {
-      const auto& p = mesh.point(v);
-      b.add(Eigen::Vector3d(p.x(), p.y(), p.z()));
-    }
-    m.fin_boxes.push_back(b);
-    m.fins.push_back(std::make_unique<geometry::SurfaceQuery>(mesh));
-  }
   m.cb_station = vehicle.mass.cb_station;
-  // Wall distances in each grid's own frame: fixed, since a fin grid turns with its fin.
-  for (const auto& d : m.grids) {
-    const auto n = static_cast<std::size_t>(d.grid->cells);
-    std::vector<double> w(n, kInf);
-    const geometry::SurfaceQuery* q = d.priority == 1 ? m.hull.get()
-                                      : d.fin >= 0 ? m.fins[static_cast<std::size_t>(d.fin)].get()
-                                                   : nullptr;
-    if (q != nullptr)
-      for (std::size_t c = 0; c < n; ++c) w[c] = std::abs(q->signed_distance(d.geo.cell_centre[c]));
-    std::vector<double> slack(n);
-    for (std::size_t c = 0; c < n; ++c)
-      slack[c] = std::max(0.0, w[c] - cover_band(settings, d.size[c]));
-    m.slack.push_back(std::move(slack));
-    m.wall_dist.push_back(std::move(w));
-    m.wall_hole.emplace_back(n, 0);
-    m.depth.emplace_back(n, kInf);
-    m.marks.emplace_back(n, 0);
-    m.stamps.push_back(0);
-    m.found.push_back(-1);
-  }
+}
+
+OversetAssembler::OversetAssembler(const std::vector<OversetComponent>& components,
+                                   OversetSettings settings)
+    : impl_(std::make_unique<Impl>()) {
+  if (components.size() < 2)
+    throw std::invalid_argument(fmt::format(
+        "OversetAssembler: an overset system needs at least two grids, got {}", components.size()));
+  for (const auto& c : components)
+    if (c.grid == nullptr || c.grid->cells == 0)
+      throw std::invalid_argument("OversetAssembler: a component without cells");
+  impl_->settings = settings;
+  impl_->init(components, std::vector<int>(components.size(), -1));
 }
 
 OversetAssembler::OversetAssembler(OversetAssembler&&) noexcept = default;
@@ -1125,11 +936,19 @@ int OversetAssembler::locate(int grid, const Eigen::Vector3d& x) const {
 }
 
 Assembly OversetAssembler::assemble(const std::vector<double>& deflections) {
+  if (impl_->sys == nullptr)
+    throw std::logic_error("OversetAssembler: fin deflections given to a system without fins");
+  impl_->place_fins(deflections);
+  Assembly a = assemble();
+  a.fin_deflections = deflections;
+  return a;
+}
+
+Assembly OversetAssembler::assemble() {
   const auto t0 = std::chrono::steady_clock::now();
   auto& m = *impl_;
-  m.place_fins(deflections);
   Assembly a;
-  a.fin_deflections = deflections;
+  if (m.sys != nullptr) a.fin_deflections = m.sys->fin_deflections;
   a.grids.resize(m.grids.size());
   std::vector<std::vector<int>> all(m.grids.size());
   for (std::size_t g = 0; g < m.grids.size(); ++g) {
@@ -1146,6 +965,8 @@ Assembly OversetAssembler::assemble(const std::vector<double>& deflections) {
 
 Assembly OversetAssembler::update(const Assembly& previous,
                                   const std::vector<double>& deflections) {
+  if (impl_->sys == nullptr)
+    throw std::logic_error("OversetAssembler::update: only a vehicle's system turns its fins");
   const auto t0 = std::chrono::steady_clock::now();
   auto& m = *impl_;
   // The region the fins sweep: their grids' boxes, and the boxes of the fin solids, before and
@@ -1154,7 +975,7 @@ Assembly OversetAssembler::update(const Assembly& previous,
   for (std::size_t g = 0; g < m.grids.size(); ++g)
     if (m.grids[g].fin >= 0) {
       swept.push_back(m.body_box(static_cast<int>(g)));
-      swept_solid.push_back(m.fin_body_box(m.grids[g].fin));
+      swept_solid.push_back(m.solid_body_box(static_cast<int>(g)));
     }
   m.place_fins(deflections);
   for (std::size_t g = 0, k = 0; g < m.grids.size(); ++g)
@@ -1162,7 +983,7 @@ Assembly OversetAssembler::update(const Assembly& previous,
       const Box b = m.body_box(static_cast<int>(g));
       swept[k].add(b.lo);
       swept[k].add(b.hi);
-      const Box s = m.fin_body_box(m.grids[g].fin);
+      const Box s = m.solid_body_box(static_cast<int>(g));
       swept_solid[k].add(s.lo);
       swept_solid[k].add(s.hi);
       ++k;

@@ -33,6 +33,12 @@ struct SurfacePart {
 };
 
 SurfaceMesh hull_surface(const MyringProfile& profile, double cb_station, SurfaceResolution res);
+// A closed circular cylinder along z through (cx, cy), z from z0 to z1 > z0: the solid of a 2D
+// body (a cylinder in a one-cell-thick grid), its side a prism of `segments` >= 3 faces whose
+// vertices lie on the circle (the chord lies inside it by radius (1 - cos(pi / segments))).
+// Throws GeometryError on a non-positive radius or length or too few segments.
+SurfaceMesh cylinder_surface(double cx, double cy, double radius, double z0, double z1,
+                             int segments);
 SurfaceMesh fin_surface(const FinGeometry& fin, double deflection, SurfaceResolution res);
 
 // Hull followed by every fin (file order), each a closed surface; fins deflected by

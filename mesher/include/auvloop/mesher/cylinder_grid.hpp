@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "auvloop/geometry/surface.hpp"
 #include "auvloop/mesher/grid.hpp"
 
 namespace auvloop::mesher {
@@ -33,6 +34,36 @@ struct CylinderChannelSpec {
 };
 
 Grid cylinder_channel(const CylinderChannelSpec& spec, const std::string& name = "cylinder");
+
+// The same channel and cylinder as an overset pair (issue 17's schaefer-turek-*-overset cases):
+//   - "cylinder": an O-grid from the cylinder (patch "cylinder", wall) to the circle of
+//     outer_radius (patch "outer", overset), `around` cells round it, `radial_cells` graded
+//     outermost / innermost = radial_ratio; front and back empty;
+//   - "background": the channel, Cartesian, uniform cells of about `spacing` (0: the O-grid's
+//     outer tangential cell size, 2 pi outer_radius / around) up to x = near_end, then
+//     `downstream_cells` growing to the outlet; patches inlet, outlet, bottom and top (walls),
+//     front and back (empty), and no cylinder: the assembly cuts it out;
+//   - the cylinder's solid for the assembly's hole cutting, longer than the grids are thick.
+// Throws std::invalid_argument when the O-grid does not fit in the channel with a cell to spare.
+struct CylinderOversetSpec {
+  double length = 2.2, height = 0.41;
+  double cx = 0.2, cy = 0.2, radius = 0.05;
+  double outer_radius = 0.15;
+  int around = 64;
+  int radial_cells = 16;
+  double radial_ratio = 4.0;
+  double spacing = 0;
+  double near_end = 0.5;
+  int downstream_cells = 40;
+  double thickness = 0.01;
+};
+
+struct CylinderOverset {
+  Grid cylinder, background;
+  geometry::SurfaceMesh solid;  // in the cylinder grid's frame
+};
+
+CylinderOverset cylinder_overset(const CylinderOversetSpec& spec);
 
 // Face-addressed grid from hexahedra given by eight point indices each (VTK/OpenFOAM hex order:
 // bottom quad 0-1-2-3 counter-clockwise seen from above, top quad 4-5-6-7 above it). Shared faces

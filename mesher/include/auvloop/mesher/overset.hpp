@@ -3,10 +3,10 @@
 // their values from another grid (fringe, with donor cells and weights), which are out of the
 // fluid or covered by a better grid (hole), and which found no donor (orphan).
 //
-// Algorithm, grids in priority order (fins, then hull, then background: the finest, nearest-wall
-// grid wins):
-//   1. wall holes: cells whose centre lies inside the hull or a fin (CGAL inside tests,
-//      geometry::SurfaceQuery, on the deflected surfaces);
+// Algorithm, grids in priority order (a vehicle: fins, then hull, then background; the finest,
+// nearest-wall grid wins):
+//   1. wall holes: cells whose centre lies inside the solid of another grid (hull, fins; CGAL
+//      inside tests, geometry::SurfaceQuery, on the solids placed with their grids);
 //   2. covered holes: a cell whose centre lies in an active cell of another component grid whose
 //      wall is nearer (by the fringe layers plus one and a half of the cell's sizes; the
 //      background has no wall), at least `overlap_cells` of its own sizes plus fringe_layers + 1.5
@@ -84,20 +84,43 @@ struct OversetSettings {
   int chain_passes = 4;
 };
 
+// One grid of a general overset system (a cylinder's O-grid over a channel, a foil's grid over a
+// background): the grid (not owned; its placement, read at every assembly, maps its frame to the
+// system's), its priority (where grids overlap the higher wins; 0 is a background, which has no
+// wall and covers nothing) and the closed body it fits, in the grid's frame (null: none), whose
+// inside is a hole in every other grid. Grids whose patches include a non-empty `empty` patch are
+// one cell thick; when all are, the system is planar (2D): stencils reproduce linear fields in
+// the plane, and cell sizes are measured in it.
+struct OversetComponent {
+  const Grid* grid = nullptr;
+  int priority = 0;
+  const geometry::SurfaceMesh* solid = nullptr;  // copied by the assembler
+};
+
 class OversetAssembler {
  public:
+  // A vehicle's system: hull (priority 1, the hull's solid), fins (priority 2, each its fin's
+  // solid, turned with its grid), background (0); GridSystem::grids() order.
   OversetAssembler(GridSystem& system, const geometry::Vehicle& vehicle,
                    OversetSettings settings = {});
+  // A general system, in the order given (the Assembly's grid order). Throws
+  // std::invalid_argument for fewer than two grids or a grid without cells.
+  explicit OversetAssembler(const std::vector<OversetComponent>& components,
+                            OversetSettings settings = {});
   OversetAssembler(OversetAssembler&&) noexcept;
   ~OversetAssembler();
 
   // Full assembly with the fins at `deflections` (rad, one per fin); moves the fin grids'
   // placements of the system given to the constructor.
+  // A vehicle's system only (std::logic_error otherwise).
   Assembly assemble(const std::vector<double>& deflections);
+  // Full assembly at the grids' present placements (any system).
+  Assembly assemble();
   // After a small fin rotation: only cells near the fins are re-examined; stencils between grids
   // that did not move are kept, the others refitted (new weights on the previous cells) while
   // their donor still contains the centre and nothing outranks it, or else searched from the
-  // previous donor. Gives the same statuses as a full assembly (tested).
+  // previous donor. Gives the same statuses as a full assembly (tested). A vehicle's system only
+  // (std::logic_error otherwise).
   Assembly update(const Assembly& previous, const std::vector<double>& deflections);
 
   // Body-frame centre of a cell (placement applied).

@@ -1,0 +1,209 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Overset assembly, the search stage: overset_search.hpp states the steps.
+#include "overset_search.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include <Eigen/Dense>
+#include <boost/iterator/zip_iterator.hpp>
+
+namespace auvloop::mesher::overset_detail {
+
+GridData prepare(const Grid& g, int priority, int fin, int solid, bool planar) {
+  GridData d;
+  d.grid = &g;
+  d.priority = priority;
+  d.fin = fin;
+  d.solid = solid;
+  d.geo = compute_geometry(g);
+  const auto nc = static_cast<std::size_t>(g.cells);
+  std::vector<int> count(nc + 1, 0);
+  for (int f = 0; f < g.faces(); ++f) {
+    ++count[static_cast<std::size_t>(g.owner[static_cast<std::size_t>(f)]) + 1];
+    if (f < g.internal_faces())
+      ++count[static_cast<std::size_t>(g.neighbour[static_cast<std::size_t>(f)]) + 1];
+  }
+  for (std::size_t c = 0; c < nc; ++c) count[c + 1] += count[c];
+  d.cell_face_offsets = count;
+  d.cell_faces.resize(static_cast<std::size_t>(count[nc]));
+  auto fill = count;
+  for (int f = 0; f < g.faces(); ++f) {
+    const auto o = static_cast<std::size_t>(g.owner[static_cast<std::size_t>(f)]);
+    d.cell_faces[static_cast<std::size_t>(fill[o]++)] = f;
+    if (f < g.internal_faces()) {
+      const auto n = static_cast<std::size_t>(g.neighbour[static_cast<std::size_t>(f)]);
+      d.cell_faces[static_cast<std::size_t>(fill[n]++)] = f;
+    }
+  }
+  d.outer.assign(nc, 0);
+  for (const auto& p : g.patches)
+    if (p.type == PatchType::overset)
+      for (int f = p.start; f < p.start + p.size; ++f)
+        d.outer[static_cast<std::size_t>(g.owner[static_cast<std::size_t>(f)])] = 1;
+  for (const auto& p : g.points) d.local_box.add(p);
+  const double thickness = d.local_box.hi.z() - d.local_box.lo.z();
+  d.size.resize(nc);
+  for (std::size_t c = 0; c < nc; ++c) {
+    d.size[c] =
+        planar ? std::sqrt(d.geo.cell_volume[c] / thickness) : std::cbrt(d.geo.cell_volume[c]);
+    const auto& x = d.geo.cell_centre[c];
+    d.centres.emplace_back(x.x(), x.y(), x.z());
+    d.ids.push_back(static_cast<int>(c));
+  }
+  d.radius.assign(static_cast<std::size_t>(g.cells), 0.0);
+  for (int f = 0; f < g.faces(); ++f) {
+    const auto fu = static_cast<std::size_t>(f);
+    for (int k = g.face_offsets[fu]; k < g.face_offsets[fu + 1]; ++k) {
+      const auto& p =
+          g.points[static_cast<std::size_t>(g.face_points[static_cast<std::size_t>(k)])];
+      for (int c : {g.owner[fu], f < g.internal_faces() ? g.neighbour[fu] : -1})
+        if (c >= 0) {
+          auto& r = d.radius[static_cast<std::size_t>(c)];
+          Eigen::Vector3d to = p - d.geo.cell_centre[static_cast<std::size_t>(c)];
+          if (planar) to.z() = 0;
+          r = std::max(r, to.norm());
+        }
+    }
+  }
+  for (double r : d.radius) d.largest_radius = std::max(d.largest_radius, r);
+  d.tree = std::make_unique<KTree>(
+      boost::make_zip_iterator(boost::make_tuple(d.centres.begin(), d.ids.begin())),
+      boost::make_zip_iterator(boost::make_tuple(d.centres.end(), d.ids.end())));
+  return d;
+}
+
+// Signed distance of x beyond the face plane, along the cell's outward normal.
+double beyond(const GridData& d, int face, int cell, const Eigen::Vector3d& x) {
+  const auto f = static_cast<std::size_t>(face);
+  const Eigen::Vector3d& S = d.geo.face_area[f];
+  const double sign = d.grid->owner[f] == cell ? 1.0 : -1.0;
+  return sign * S.dot(x - d.geo.face_centre[f]) / S.norm();
+}
+
+// How far x lies outside a cell: the largest distance beyond any of its face planes (<= 0 inside).
+double violation(const GridData& d, int cell, const Eigen::Vector3d& x) {
+  double worst = -kInf;
+  d.each_face(cell, [&](int f) { worst = std::max(worst, beyond(d, f, cell, x)); });
+  return worst;
+}
+
+// A walk from cell c towards x across the face x lies furthest beyond: the cell containing x, or
+// -1 when the walk leaves the grid or circles among warped cells.
+int walk(const GridData& d, const Eigen::Vector3d& x, int c) {
+  for (int step = 0; step < 200 && c >= 0; ++step) {
+    int best_face = -1;
+    double best = 1e-12 * d.size[static_cast<std::size_t>(c)];
+    d.each_face(c, [&](int f) {
+      const double s = beyond(d, f, c, x);
+      if (s > best) {
+        best = s;
+        best_face = f;
+      }
+    });
+    if (best_face < 0) return c;
+    c = d.other(best_face, c);
+  }
+  return -1;
+}
+
+// The cell containing x (grid frame): a walk from `seed` (a previous donor), else from the nearest
+// cell centre (k-d tree). A walk can end on the boundary although x is inside the grid (the fluid
+// round a body is not convex: a walk from a distant seed can run into the wall), or circle among
+// warped cells, or stop in the gap their face planes leave; then walks from the 16 nearest cells,
+// and last those cells by their face planes. -1: x is in no cell.
+int locate_cell(const GridData& d, const Eigen::Vector3d& x, int seed) {
+  if (!d.local_box.contains(x)) return -1;
+  const KPoint q(x.x(), x.y(), x.z());
+  if (seed >= 0) {
+    const int c = walk(d, x, seed);
+    if (c >= 0) return c;
+  }
+  {
+    KSearch search(*d.tree, q, 1);
+    const int c = walk(d, x, boost::get<1>(search.begin()->first));
+    if (c >= 0) return c;
+  }
+  KSearch search(*d.tree, q, 16);
+  bool first = true;                // the nearest cell's walk has just failed
+  for (const auto& hit : search) {  // walks from the nearest cells: warped cells leave gaps
+    if (std::exchange(first, false)) continue;
+    const int c = walk(d, x, boost::get<1>(hit.first));
+    if (c >= 0) return c;
+  }
+  int best_cell = -1;
+  double best = kInf;
+  for (const auto& hit : search) {
+    const int cell = boost::get<1>(hit.first);
+    const double v = violation(d, cell, x) / d.size[static_cast<std::size_t>(cell)];
+    if (v < best) {
+      best = v;
+      best_cell = cell;
+    }
+  }
+  // Warped faces: accept a point within a thousandth of the cell size outside its face planes.
+  return best <= 1e-3 ? best_cell : -1;
+}
+
+// The cell whose centre is nearest to x (grid frame).
+int nearest(const GridData& d, const Eigen::Vector3d& x) {
+  KSearch search(*d.tree, KPoint(x.x(), x.y(), x.z()), 1);
+  return boost::get<1>(search.begin()->first);
+}
+
+// Keeps the (at most) 16 cells of a fallback stencil whose centres are nearest to x: the weights
+// stay local, and their round-off (n^2 eps) small.
+void nearest_first(const GridData& d, const Eigen::Vector3d& x, std::vector<int>& cells) {
+  const auto dist = [&](int c) {
+    return (d.geo.cell_centre[static_cast<std::size_t>(c)] - x).squaredNorm();
+  };
+  std::sort(cells.begin(), cells.end(), [&](int a, int b) { return dist(a) < dist(b); });
+  if (cells.size() > 16) cells.resize(16);
+}
+
+// Interpolation weights reproducing linear fields: minimise sum w_i^2 / D_i subject to
+// sum w_i = 1 and sum w_i (x_i - x) = 0, D_i = 1 / |x_i - x|^2 (near cells weigh more); m = 4
+// constraints, or 3 in the plane (the z offsets of a planar system are all zero).
+bool linear_weights(const std::vector<Eigen::Vector3d>& xs, const Eigen::Vector3d& x,
+                    std::vector<double>& w, bool planar) {
+  const auto n = static_cast<Eigen::Index>(xs.size());
+  const Eigen::Index m = planar ? 3 : 4;
+  if (n < m) return false;
+  // Offsets in units of the stencil's extent keep the system well scaled; the constraints (and so
+  // the exactness for linear fields) do not depend on that scale or on D.
+  double h = 0;
+  for (const auto& p : xs) h = std::max(h, (p - x).norm());
+  Eigen::MatrixXd A(m, n);
+  Eigen::VectorXd D(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const Eigen::Vector3d r = (xs[static_cast<std::size_t>(i)] - x) / h;
+    A(0, i) = 1.0;
+    A.block(1, i, m - 1, 1) = r.head(m - 1);
+    D(i) = 1.0 / (r.squaredNorm() + 1e-3);
+  }
+  // Minimum-norm solution of B v = e1 with B = A D^(1/2), w = D^(1/2) v, through a QR
+  // factorisation of B^T (n x m): v = Q R^-T e1. Unlike the normal equations (A D A^T) y = e1 it
+  // does not square the condition number, which matters for fallback stencils that extrapolate;
+  // two steps of iterative refinement on the constraint residual e1 - A w bring sum w = 1 and
+  // sum w r = 0 back to round-off.
+  const Eigen::VectorXd sqrt_d = D.cwiseSqrt();
+  const Eigen::MatrixXd Bt = (A * sqrt_d.asDiagonal()).transpose();
+  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(Bt);
+  const Eigen::MatrixXd R = qr.matrixQR().topLeftCorner(m, m).triangularView<Eigen::Upper>();
+  const double scale = std::abs(R(0, 0));
+  for (Eigen::Index k = 0; k < m; ++k)
+    if (!(std::abs(R(k, k)) > 1e-8 * scale)) return false;  // centres in a plane (a line)
+  const Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(n, m);
+  const auto solve = [&](const Eigen::VectorXd& rhs) -> Eigen::VectorXd {
+    const Eigen::VectorXd y = R.transpose().triangularView<Eigen::Lower>().solve(rhs);
+    return sqrt_d.asDiagonal() * (Q * y);
+  };
+  const Eigen::VectorXd e1 = Eigen::VectorXd::Unit(m, 0);
+  Eigen::VectorXd wv = solve(e1);
+  for (int step = 0; step < 2; ++step) wv += solve(e1 - A * wv);
+  w.assign(wv.data(), wv.data() + n);
+  return true;
+}
+
+}  // namespace auvloop::mesher::overset_detail
