@@ -58,6 +58,11 @@ void Pimple::assemble_momentum(bool final) {
       eq.add_rhs(mesh_, f);
     }
     if (!final && settings_.relax_u < 1) eq.relax(U.c[i].cells, settings_.relax_u);
+    // Overset (overset.hpp, step 1): fringe rows the donors' interpolation of U, hole rows 0.
+    if (overset_ != nullptr) {
+      overset_->fixed_values(U.c[i].cells, 0.0, fixed_);
+      eq.fix_values(mesh_, overset_->fixed_cells(), fixed_);
+    }
   }
 }
 
@@ -146,7 +151,9 @@ void Pimple::solve_momentum(StepReport& r, bool first) {
     const auto e = static_cast<Eigen::Index>(i);
     parallel_for(mesh_.cells(), [&](int c) {
       const auto s = static_cast<std::size_t>(c);
-      rhs[s] = use_force ? -force[s] : -gp[s][e];
+      rhs[s] = overset_ != nullptr && !overset_->active(c) ? 0.0  // fixed rows stay fixed
+               : use_force                                 ? -force[s]
+                                                           : -gp[s][e];
     });
     // The pressure force joins the source for the solve only: the correctors need the equation
     // without it, so its source is kept aside and swapped back after (bit for bit).

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 
@@ -70,6 +71,19 @@ Pimple::Pimple(const Mesh& mesh, PimpleSettings settings)
   }
 }
 
+void Pimple::set_overset(const Overset* overset) {
+  if (overset != nullptr && turbulence_ != nullptr)
+    throw std::logic_error("Pimple: a turbulence model on an overset mesh is not supported yet");
+  overset_ = overset;
+}
+
+void Pimple::mask_faces(std::vector<double>& flux) const {
+  if (overset_ == nullptr) return;
+  parallel_for(mesh_.faces(), [&](int f) {
+    if (!overset_->live(f)) flux[static_cast<std::size_t>(f)] = 0.0;
+  });
+}
+
 void Pimple::slip(const std::string& patch) {
   slip_patches_.push_back(patch_index(mesh_, patch));
   U.fix(mesh_, patch, Eigen::Vector3d::Zero());
@@ -92,7 +106,16 @@ void Pimple::apply_slip() {
 }
 
 void Pimple::initialise() {
+  if (overset_ != nullptr && turbulence_ != nullptr)
+    throw std::logic_error("Pimple: a turbulence model on an overset mesh is not supported yet");
   pressure_fixed_ = false;
+  reference_cell_ = overset_ == nullptr || overset_->active_cells().empty()
+                        ? 0
+                        : overset_->active_cells().front();
+  if (overset_ != nullptr) {
+    for (std::size_t i = 0; i < 3; ++i) overset_->apply(U.c[i].cells, 0.0);
+    overset_->apply(p.cells, std::numeric_limits<double>::quiet_NaN());
+  }
   for (const auto& bc : p.bcs) pressure_fixed_ = pressure_fixed_ || bc.kind == BcKind::fixed_value;
   apply_slip();
   p.update_boundary(mesh_);
@@ -103,6 +126,7 @@ void Pimple::initialise() {
     phi[static_cast<std::size_t>(f)] =
         U.c[0].is_empty(mesh_, b) ? 0.0 : U.face(b).dot(mesh_.area(f));
   }
+  mask_faces(phi);
   for (auto& level : U_old_) level = u;
   for (auto& level : phi_old_) level = phi;
   for (auto& force : predictor_force_) force.clear();
@@ -193,13 +217,18 @@ StepReport Pimple::step() {
     r.max_courant = co;
     Scratch<double> d(static_cast<std::size_t>(mesh_.cells()));
     div(mesh_, phi, *d);
+    // Over the active cells of an overset mesh: the others solve no continuity equation.
     r.continuity_error =
         parallel_sum<1>(mesh_.cells(),
                         [&](int lo, int hi, std::array<double, 1>& s) {
                           for (int c = lo; c < hi; ++c)
-                            s[0] += std::abs(d[static_cast<std::size_t>(c)]) * mesh_.volume(c);
+                            if (overset_ == nullptr || overset_->active(c))
+                              s[0] += std::abs(d[static_cast<std::size_t>(c)]) * mesh_.volume(c);
                         })[0] *
-        dt_ / mesh_.total_volume();
+        dt_ / (overset_ == nullptr ? mesh_.total_volume() : overset_->active_volume());
+    if (overset_ != nullptr)
+      for (double q : interface_flux(*overset_, mesh_, phi))
+        r.interface_flux = std::max(r.interface_flux, std::abs(q));
     r.seconds_other = seconds_since(t0);
     r.seconds_gradient = mesh_.gradient_seconds() - gradient_seconds;
     check(r);

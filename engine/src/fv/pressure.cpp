@@ -10,6 +10,8 @@
 //      p relaxed in all but the final outer iteration; U = HbyA - D grad(p).
 #include "auvloop/engine/fv/pimple.hpp"
 
+#include <limits>
+
 #include <Eigen/LU>
 
 #include "diagnosis.hpp"
@@ -135,6 +137,19 @@ void Pimple::correct_pressure(StepReport& r, bool first, bool final) {
       HbyA[i][static_cast<std::size_t>(c)] /= A[static_cast<std::size_t>(c)];
     });
   }
+  // Overset (overset.hpp, step 3): a fringe cell's HbyA = U + D grad(p), so that the Rhie-Chow
+  // flux at an active-fringe face treats it as an active cell whose U is the interpolated one;
+  // hole cells (fixed to zero) keep HbyA = 0.
+  if (overset_ != nullptr) {
+    auto& gp = W.gp;
+    gp.resize(n);
+    mesh_.gradient(p.cells, p.boundary, gp);
+    for (int c : overset_->fringe_cells()) {
+      const auto s = static_cast<std::size_t>(c);
+      for (std::size_t i = 0; i < 3; ++i)
+        if (active_[i]) HbyA[i][s] = U.c[i].cells[s] + D[s] * gp[s][static_cast<Eigen::Index>(i)];
+    }
+  }
   // b. Rhie-Chow flux with the time-consistent correction; the face D.
   auto& phiHbyA = W.phiHbyA;
   auto& Df = W.Df;
@@ -176,7 +191,15 @@ void Pimple::correct_pressure(StepReport& r, bool first, bool final) {
     parallel_for(mesh_.cells(), [&](int c) {
       eq.source[static_cast<std::size_t>(c)] += net[static_cast<std::size_t>(c)] * mesh_.volume(c);
     });
-    if (!pressure_fixed_) eq.diag[0] += eq.diag[0];  // reference value p = 0 in cell 0
+    // Overset (step 2): fringe rows the interpolation of the current p, hole rows their value.
+    if (overset_ != nullptr) {
+      overset_->fixed_values(p.cells, std::numeric_limits<double>::quiet_NaN(), fixed_);
+      eq.fix_values(mesh_, overset_->fixed_cells(), fixed_);
+    }
+    if (!pressure_fixed_) {  // reference value p = 0 in the reference cell
+      const auto ref = static_cast<std::size_t>(reference_cell_);
+      eq.diag[ref] += eq.diag[ref];
+    }
     const auto s = solve_named(mesh_, eq, p.cells, "pressure equation", [&] {
       return solver_.solve_symmetric(eq, p.cells, *settings_.pressure_solver);
     });
@@ -203,6 +226,7 @@ void Pimple::correct_pressure(StepReport& r, bool first, bool final) {
       }
       phi[fs] = phiHbyA[fs] - Df[fs] * (mesh_.alpha(f) * (pf - p.cells[P]) + correction);
     });
+    mask_faces(phi);  // overset, step 5
   }
   if (!final && settings_.relax_p < 1) {
     parallel_for(mesh_.cells(), [&](int c) {
@@ -220,6 +244,7 @@ void Pimple::correct_pressure(StepReport& r, bool first, bool final) {
       const auto s = static_cast<std::size_t>(c);
       U.c[i].cells[s] = HbyA[i][s] - D[s] * gp[s][e];
     });
+    if (overset_ != nullptr) overset_->apply(U.c[i].cells, 0.0);  // overset, step 4
     U.c[i].update_boundary(mesh_);
   }
 }

@@ -17,6 +17,7 @@
 #include "auvloop/engine/fv/field.hpp"
 #include "auvloop/engine/fv/linear_solver.hpp"
 #include "auvloop/engine/fv/operators.hpp"
+#include "auvloop/engine/fv/overset.hpp"
 #include "auvloop/engine/fv/turbulence_model.hpp"
 
 namespace auvloop::engine::fv {
@@ -68,7 +69,11 @@ struct StepReport {
   double momentum_residual = 0;  // initial normalised residual, first outer iteration (max comp)
   double pressure_residual = 0;  // initial normalised residual, first corrector
   double outer_residual = 0;     // initial momentum residual of the last outer iteration
-  double continuity_error = 0;   // volume-weighted mean |div phi| * dt after the step
+  double continuity_error = 0;   // volume-weighted mean |div phi| * dt after the step (over
+                                 // the active cells of an overset mesh)
+  // Overset meshes: the largest |net flux| (m^3/s) a component's active cells pass to its fringe
+  // and hole cells (fv::interface_flux), after the step.
+  double interface_flux = 0;
   int outer_iterations = 0;
   int pressure_iterations = 0;  // Krylov iterations summed over correctors (0 for CHOLMOD)
   int momentum_iterations = 0;  // sweep pairs or Krylov iterations summed over components
@@ -110,6 +115,11 @@ class Pimple {
   // pressure correctors of every outer iteration. Before initialise().
   void set_turbulence(TurbulenceModel* model) { turbulence_ = model; }
   [[nodiscard]] TurbulenceModel* turbulence() const { return turbulence_; }
+  // Couples the components of a composite (overset) mesh explicitly (overset.hpp states the
+  // algorithm; not owned, it must outlive this flow; nullptr detaches). Before initialise(); a
+  // turbulence model does not ride on the coupling yet (std::logic_error).
+  void set_overset(const Overset* overset);
+  [[nodiscard]] const Overset* overset() const { return overset_; }
   // Boundary values and face fluxes from the current U (call after setting U and its BCs).
   void initialise();
   StepReport step();
@@ -206,6 +216,11 @@ class Pimple {
   double dt_ = 0;      // this step's time step
   double dt_old_ = 0;  // the previous step's (0 before the first step)
   TurbulenceModel* turbulence_ = nullptr;
+  const Overset* overset_ = nullptr;
+  int reference_cell_ = 0;     // where p = 0 when no patch fixes it (the first active cell)
+  std::vector<double> fixed_;  // overset: the fixed cells' values (scratch)
+  // Overset: zero flux on the faces that carry none (Overset::live).
+  void mask_faces(std::vector<double>& flux) const;
 };
 
 // Maximum Courant number dt * sum |phi| / (2 V) over the cells, with the cell where it occurs.
