@@ -117,6 +117,24 @@ void Pimple::initialise() {
     overset_->apply(p.cells, std::numeric_limits<double>::quiet_NaN());
   }
   for (const auto& bc : p.bcs) pressure_fixed_ = pressure_fixed_ || bc.kind == BcKind::fixed_value;
+  // Overset: the open components (overset_mass.cpp), those with fringe cells and an active cell
+  // on a fixed-pressure patch.
+  open_components_.clear();
+  shift_response_.clear();
+  if (overset_ != nullptr) {
+    std::vector<char> open(static_cast<std::size_t>(overset_->components()), 0);
+    for (int b = 0; b < mesh_.boundary_faces(); ++b) {
+      const int c = mesh_.owner(mesh_.internal_faces() + b);
+      if (p.bcs[static_cast<std::size_t>(mesh_.patch_of(b))].kind == BcKind::fixed_value &&
+          overset_->active(c))
+        open[static_cast<std::size_t>(overset_->component_of(c))] = 1;
+    }
+    std::vector<char> fringe(open.size(), 0);
+    for (int c : overset_->fringe_cells())
+      fringe[static_cast<std::size_t>(overset_->component_of(c))] = 1;
+    for (std::size_t k = 0; k < open.size(); ++k)
+      if (open[k] != 0 && fringe[k] != 0) open_components_.push_back(static_cast<int>(k));
+  }
   apply_slip();
   p.update_boundary(mesh_);
   std::array<std::vector<double>, 3> u{U.c[0].cells, U.c[1].cells, U.c[2].cells};

@@ -192,6 +192,9 @@ void Pimple::correct_pressure(StepReport& r, bool first, bool final) {
       eq.source[static_cast<std::size_t>(c)] += net[static_cast<std::size_t>(c)] * mesh_.volume(c);
     });
     // Overset (step 2): fringe rows the interpolation of the current p, hole rows their value.
+    const bool balance = overset_ != nullptr && !open_components_.empty() &&
+                         corr == settings_.non_orthogonal_correctors;
+    if (balance) W.p_free = eq;
     if (overset_ != nullptr) {
       overset_->fixed_values(p.cells, std::numeric_limits<double>::quiet_NaN(), fixed_);
       eq.fix_values(mesh_, overset_->fixed_cells(), fixed_);
@@ -205,28 +208,9 @@ void Pimple::correct_pressure(StepReport& r, bool first, bool final) {
     });
     if (first && corr == 0) r.pressure_residual = s.initial_residual;
     r.pressure_iterations += s.iterations;
-    // Face flux of the pressure equation with the same explicit part as its source.
-    parallel_for(mesh_.faces(), [&](int f) {
-      const auto fs = static_cast<std::size_t>(f);
-      const auto P = static_cast<std::size_t>(mesh_.owner(f));
-      double pf;
-      double correction = 0;
-      if (f < internal) {
-        pf = p.cells[static_cast<std::size_t>(mesh_.neighbour(f))];
-        if (corrected) correction = mesh_.k(f).dot(interpolate(mesh_, gp, f));
-      } else {
-        const int b = f - internal;
-        const auto [ca, cb] = p.value_coeffs(mesh_, b);
-        if (p.is_empty(mesh_, b) || ca == 1.0) {
-          phi[fs] = phiHbyA[fs];
-          return;
-        }
-        pf = cb;
-        if (corrected) correction = mesh_.k(f).dot(gp[P]);
-      }
-      phi[fs] = phiHbyA[fs] - Df[fs] * (mesh_.alpha(f) * (pf - p.cells[P]) + correction);
-    });
-    mask_faces(phi);  // overset, step 5
+    pressure_flux(p.cells, corrected, phi);
+    // Overset: the open components' interface flux to zero (overset_mass.cpp), last corrector.
+    if (balance) balance_overset_mass(W.p_free, corrected, r);
   }
   if (!final && settings_.relax_p < 1) {
     parallel_for(mesh_.cells(), [&](int c) {
@@ -270,6 +254,34 @@ void Pimple::store_predictor_force() {
       force[s] = (h[s] - eq.diag[s] * U.c[i].cells[s]) / mesh_.volume(c);
     });
   }
+}
+
+// Face flux of the pressure equation with the same explicit part as its source.
+void Pimple::pressure_flux(std::span<const double> pc, bool corrected,
+                           std::vector<double>& out) const {
+  const auto& W = work_;
+  const int internal = mesh_.internal_faces();
+  parallel_for(mesh_.faces(), [&](int f) {
+    const auto fs = static_cast<std::size_t>(f);
+    const auto P = static_cast<std::size_t>(mesh_.owner(f));
+    double pf;
+    double correction = 0;
+    if (f < internal) {
+      pf = pc[static_cast<std::size_t>(mesh_.neighbour(f))];
+      if (corrected) correction = mesh_.k(f).dot(interpolate(mesh_, W.gp, f));
+    } else {
+      const int b = f - internal;
+      const auto [ca, cb] = p.value_coeffs(mesh_, b);
+      if (p.is_empty(mesh_, b) || ca == 1.0) {
+        out[fs] = W.phiHbyA[fs];
+        return;
+      }
+      pf = cb;
+      if (corrected) correction = mesh_.k(f).dot(W.gp[P]);
+    }
+    out[fs] = W.phiHbyA[fs] - W.Df[fs] * (mesh_.alpha(f) * (pf - pc[P]) + correction);
+  });
+  mask_faces(out);  // overset, step 5
 }
 
 }  // namespace auvloop::engine::fv

@@ -11,6 +11,7 @@
 
 #include <filesystem>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -154,6 +155,12 @@ class Pimple {
   void transpose_stress();
   void solve_momentum(StepReport& r, bool first);
   void correct_pressure(StepReport& r, bool first, bool final);
+  // The face flux phi = phiHbyA - Df (grad p)_f of the pressure cells `pc` (the corrector's
+  // phiHbyA, Df and, when `corrected`, its explicit non-orthogonal part), faces masked.
+  void pressure_flux(std::span<const double> pc, bool corrected, std::vector<double>& out) const;
+  // Overset mass balance (overset_mass.cpp): the fringe-pressure shifts of the open components
+  // that make their interface flux zero; `free` the pressure matrix before its rows were fixed.
+  void balance_overset_mass(const Matrix& free, bool corrected, StepReport& r);
   void store_predictor_force();
   void apply_slip();
   // The skewness-corrected face flux of a cell velocity u into `flux` (internal faces; boundary
@@ -182,6 +189,10 @@ class Pimple {
     std::array<std::vector<double>, 3> grad_u_of;
     std::array<std::vector<double>, 3> transpose;
     Matrix p_eq;
+    // Overset mass balance: the pressure matrix before fixing, a shifted copy, its solution and
+    // flux, the shifted fixed values.
+    Matrix p_free, p_shifted;
+    std::vector<double> p_shift, phi_shift, fixed_shift;
   };
   Work work_;
   // The fields at the start of the step, restored when it diverges.
@@ -219,6 +230,11 @@ class Pimple {
   const Overset* overset_ = nullptr;
   int reference_cell_ = 0;     // where p = 0 when no patch fixes it (the first active cell)
   std::vector<double> fixed_;  // overset: the fixed cells' values (scratch)
+  // Overset: the components whose active cells touch a fixed-pressure patch, so that their
+  // interface flux is not closed by continuity (overset_mass.cpp), and per such component the
+  // last pressure response to a unit shift of its fringe values (the next solve's first guess).
+  std::vector<int> open_components_;
+  std::vector<std::vector<double>> shift_response_;
   // Overset: zero flux on the faces that carry none (Overset::live).
   void mask_faces(std::vector<double>& flux) const;
 };
