@@ -89,6 +89,10 @@ struct ChannelGrid {
 
 // The mesher's specification of that grid.
 mesher::CylinderChannelSpec cylinder_spec(const ChannelGrid& g);
+// Its overset counterpart (issue 17): an O-grid of 4 m cells round the cylinder and m radial
+// cells graded by radial_ratio out to 3 radii, over a Cartesian background of the O-grid's outer
+// cell size with downstream_cells_per_side x m cells to the outlet.
+mesher::CylinderOversetSpec cylinder_overset_spec(const ChannelGrid& g);
 
 // Schaefer-Turek 2D-1 (steady, Re = 20) on the grid `g` by pseudo-time marching (Euler) with
 // step dt until max |du/dt| < 1e-6 1/s.
@@ -97,8 +101,13 @@ struct CylinderResult {
   double final_change = 0;
   double cd = 0, cl = 0, dp = 0, la = 0;  // drag and lift coefficients, p difference, L_a (m)
   double seconds = 0;
+  // Overset: the active cells, and the last step's continuity error and interface flux (the
+  // largest net flux a component passes to its fringe, over the inflow Ubar H per unit depth).
+  int active_cells = 0;
+  double continuity_error = 0, interface_flux = 0;
 };
-CylinderResult schaefer_turek_2d1(const ChannelGrid& g, double dt);
+// `overset`: on the overset pair of cylinder_overset_spec(g) instead.
+CylinderResult schaefer_turek_2d1(const ChannelGrid& g, double dt, bool overset = false);
 
 // Schaefer-Turek 2D-2 (Re = 100, periodic shedding) from rest to end_time with BDF2 at fixed dt;
 // St, cD max and cL max over the last `measured_periods` periods of cL (upward crossings of its
