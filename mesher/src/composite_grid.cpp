@@ -94,4 +94,16 @@ CompositeStencils composite_stencils(const CompositeGrid& composite, const Assem
   return out;
 }
 
+CompositeSystem composite_system(const std::vector<OversetComponent>& components,
+                                 OversetSettings settings) {
+  OversetAssembler assembler(components, settings);
+  const auto assembly = assembler.assemble();
+  std::vector<const Grid*> grids;
+  grids.reserve(components.size());
+  for (const auto& c : components) grids.push_back(c.grid);
+  CompositeSystem system{composite_grid(grids), {}};
+  system.stencils = composite_stencils(system.composite, assembly);
+  return system;
+}
+
 }  // namespace auvloop::mesher

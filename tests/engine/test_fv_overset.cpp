@@ -32,13 +32,10 @@ Pair coarse_pair() {
   spec.radial_cells = 8;
   spec.downstream_cells = 16;
   const auto pair = mesher::cylinder_overset(spec);
-  mesher::OversetAssembler assembler(
-      {{&pair.cylinder, 1, &pair.solid}, {&pair.background, 0, nullptr}});
-  const auto assembly = assembler.assemble();
-  const mesher::Grid* parts[] = {&pair.cylinder, &pair.background};
-  auto composite = mesher::composite_grid(parts);
-  auto stencils = mesher::composite_stencils(composite, assembly);
-  return {std::move(composite.grid), std::move(stencils), std::move(composite.cell_offset)};
+  auto system =
+      mesher::composite_system({{&pair.cylinder, 1, &pair.solid}, {&pair.background, 0, nullptr}});
+  return {std::move(system.composite.grid), std::move(system.stencils),
+          std::move(system.composite.cell_offset)};
 }
 
 struct Run {

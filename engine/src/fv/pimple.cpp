@@ -209,6 +209,7 @@ StepReport Pimple::step() {
       solve_momentum(r, outer == 1);
       r.seconds_momentum += seconds_since(t0);
       t0 = std::chrono::steady_clock::now();
+      shift_current_ = false;  // a new momentum matrix: a new pressure matrix
       for (int corr = 0; corr < settings_.pressure_correctors; ++corr)
         correct_pressure(r, outer == 1 && corr == 0, final);
       store_predictor_force();

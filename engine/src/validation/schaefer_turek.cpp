@@ -118,16 +118,12 @@ class Channel {
 void Channel::build_overset(const ChannelGrid& g) {
   const auto o = cylinder_overset_spec(g);
   const auto pair = mesher::cylinder_overset(o);
-  mesher::OversetAssembler assembler(
-      {{&pair.cylinder, 1, &pair.solid}, {&pair.background, 0, nullptr}});
-  const auto assembly = assembler.assemble();
-  const mesher::Grid* parts[] = {&pair.cylinder, &pair.background};
-  auto composite = mesher::composite_grid(parts);
-  auto stencils = mesher::composite_stencils(composite, assembly);
-  grid_ = std::move(composite.grid);
+  auto system =
+      mesher::composite_system({{&pair.cylinder, 1, &pair.solid}, {&pair.background, 0, nullptr}});
+  grid_ = std::move(system.composite.grid);
   mesh_ = std::make_unique<fv::Mesh>(grid_);
-  overset_ =
-      std::make_unique<fv::Overset>(*mesh_, std::move(stencils), std::move(composite.cell_offset));
+  overset_ = std::make_unique<fv::Overset>(*mesh_, std::move(system.stencils),
+                                           std::move(system.composite.cell_offset));
   walls_ = {"background/bottom", "background/top"};
   cylinder_patch_ = "cylinder/cylinder";
   inlet_patch_ = "background/inlet";

@@ -52,4 +52,13 @@ struct CompositeStencils {
 // components (count or cells).
 CompositeStencils composite_stencils(const CompositeGrid& composite, const Assembly& assembly);
 
+// A static overset system in one call: the components assembled at their present placements
+// (OversetAssembler), merged into one grid in the given order, the assembly in its numbers.
+struct CompositeSystem {
+  CompositeGrid composite;
+  CompositeStencils stencils;
+};
+CompositeSystem composite_system(const std::vector<OversetComponent>& components,
+                                 OversetSettings settings = {});
+
 }  // namespace auvloop::mesher

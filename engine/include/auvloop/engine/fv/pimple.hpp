@@ -235,6 +235,10 @@ class Pimple {
   // last pressure response to a unit shift of its fringe values (the next solve's first guess).
   std::vector<int> open_components_;
   std::vector<std::vector<double>> shift_response_;
+  // The interface fluxes' response to the shifts (M of overset_mass.cpp) and whether it is of
+  // this outer iteration's pressure matrix (the correctors of one outer iteration share it).
+  Eigen::MatrixXd shift_matrix_;
+  bool shift_current_ = false;
   // Overset: zero flux on the faces that carry none (Overset::live).
   void mask_faces(std::vector<double>& flux) const;
 };
