@@ -280,8 +280,9 @@ struct SstPlate {
     s.momentum_tolerance = 1e-6;
     s.max_courant = 1e30;
     // Not the 2D default cholmod-pcg, whose preconditioner is an earlier step's factor (not in
-    // a checkpoint: docs/cfd.md, "Checkpoint and restart").
-    s.pressure_solver = fv::SymmetricMethod::cg_dic;
+    // a checkpoint: docs/cfd.md, "Checkpoint and restart"), but the 3D default cg-amg, whose
+    // aggregates come from the grid's geometric Laplacian.
+    s.pressure_solver = fv::SymmetricMethod::cg_amg;
     return s;
   }
   static engine::turbulence::SstSettings sst_settings() {

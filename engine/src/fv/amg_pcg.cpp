@@ -337,12 +337,16 @@ int AmgPcg::cells(int level) const {
   return h_->levels.at(static_cast<std::size_t>(level)).A->rows();
 }
 
+void AmgPcg::plan(const BlockCsr& A) {
+  h_ = std::make_unique<Hierarchy>(A);
+  fresh_ = true;
+}
+
 SolveStats AmgPcg::solve(const BlockCsr& A, bool changed, std::span<const double> b,
                          std::span<double> x, const Tolerance& tolerance, int max_iterations) {
-  if (!h_) {  // aggregates from the first matrix, kept for the grid's lifetime
-    h_ = std::make_unique<Hierarchy>(A);
-    changed = true;
-  }
+  if (!h_) plan(A);  // aggregates from the first matrix, kept for the grid's lifetime
+  if (fresh_) changed = true;
+  fresh_ = false;
   if (&A != h_->levels[0].A) throw std::logic_error("AmgPcg: solve with another matrix");
   if (!A.keeps_single())
     throw std::logic_error("AmgPcg: the matrix must keep its single-precision copy (keep_single)");

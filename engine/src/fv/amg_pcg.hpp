@@ -6,7 +6,8 @@
 //
 // The method (after Notay's AGMG: "An aggregation-based algebraic multigrid method", ETNA 37,
 // 2010, and Notay and Vassilevski's K-cycle, Numer. Linear Algebra Appl. 15, 2008):
-//   1. setup, once per grid: three passes of pairwise aggregation per level, each pairing a row
+//   1. setup, once per grid (from the first matrix, or the one given to plan()): three passes of
+//   pairwise aggregation per level, each pairing a row
 //      with its most strongly coupled free neighbour (largest |a_ij|, if at least a quarter of
 //      its largest coupling), give aggregates of about eight rows (AGMG's two passes give four:
 //      amg_pcg.cpp says why three); coarse levels until 64 rows or until a level keeps more
@@ -51,6 +52,10 @@ class AmgPcg {
   // Stops when `tolerance` is met; throws std::runtime_error after max_iterations.
   SolveStats solve(const BlockCsr& A, bool changed, std::span<const double> b, std::span<double> x,
                    const Tolerance& tolerance, int max_iterations);
+  // Step 1 from this matrix (the one later solves pass, holding other coefficients then) instead
+  // of from the first solve's: aggregates from a matrix that depends on the grid alone make
+  // every solve independent of the run's history, so that a restart continues bitwise.
+  void plan(const BlockCsr& A);
 
   [[nodiscard]] int levels() const;
   [[nodiscard]] int cells(int level) const;
@@ -58,6 +63,7 @@ class AmgPcg {
  private:
   struct Hierarchy;
   std::unique_ptr<Hierarchy> h_;
+  bool fresh_ = false;  // planned, no coefficients loaded yet
 };
 
 }  // namespace auvloop::engine::fv

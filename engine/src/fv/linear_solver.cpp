@@ -258,6 +258,18 @@ int iterate(Solver& solver, const Sparse& A, std::span<const double> source, std
 }
 }  // namespace
 
+void LinearSolver::plan_symmetric(const Matrix& m, SymmetricMethod method) {
+  if (method != SymmetricMethod::cg_amg) return;
+  const Team::Region team(threads());
+  auto& I = *impl_;
+  I.load(m, -1.0);
+  if (!I.amg) {
+    I.amg = std::make_unique<AmgPcg>();
+    I.csr.keep_single();
+  }
+  I.amg->plan(I.csr);
+}
+
 SolveStats LinearSolver::solve_symmetric(const Matrix& m, std::span<double> x,
                                          SymmetricMethod method) {
   const Team::Region team(threads());  // the solve's loops on one team (team.hpp)

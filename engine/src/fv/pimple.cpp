@@ -117,6 +117,9 @@ void Pimple::initialise() {
     overset_->apply(p.cells, std::numeric_limits<double>::quiet_NaN());
   }
   for (const auto& bc : p.bcs) pressure_fixed_ = pressure_fixed_ || bc.kind == BcKind::fixed_value;
+  // The pressure solver's structure (cg-amg's aggregates) from the geometric Laplacian, a
+  // function of the grid alone, not from the first step's matrix: a restart continues bitwise.
+  solver_.plan_symmetric(Matrix(laplacian(mesh_, 1.0, p)), *settings_.pressure_solver);
   // Overset: the open components (overset_mass.cpp), those with fringe cells and an active cell
   // on a fixed-pressure patch.
   open_components_.clear();
@@ -188,6 +191,9 @@ StepReport Pimple::step() {
   }
   U_old_[1].swap(U_old_[0]);
   for (std::size_t i = 0; i < 3; ++i) U_old_[0][i] = U.c[i].cells;
+  // The mass balance's warm start lives within a step: a restart from a checkpoint (written
+  // between steps) then continues bitwise.
+  for (auto& response : shift_response_) response.clear();
   phi_old_[1].swap(phi_old_[0]);
   phi_old_[0] = phi;
   const auto coeffs = TimeScheme{settings_.dt, settings_.bdf2 && steps_ > 0}.coeffs();

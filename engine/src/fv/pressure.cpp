@@ -194,7 +194,7 @@ void Pimple::correct_pressure(StepReport& r, bool first, bool final) {
     // Overset (step 2): fringe rows the interpolation of the current p, hole rows their value.
     const bool balance = overset_ != nullptr && !open_components_.empty() &&
                          corr == settings_.non_orthogonal_correctors;
-    if (balance) W.p_free = eq;
+    if (balance && !shift_current_) W.p_free = eq;  // only the response reads it
     if (overset_ != nullptr) {
       overset_->fixed_values(p.cells, std::numeric_limits<double>::quiet_NaN(), fixed_);
       eq.fix_values(mesh_, overset_->fixed_cells(), fixed_);

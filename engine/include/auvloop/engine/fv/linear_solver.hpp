@@ -82,6 +82,11 @@ class LinearSolver {
 
   // Solves A x = source for a symmetric matrix (upper == lower); x holds the initial guess.
   SolveStats solve_symmetric(const Matrix& m, std::span<double> x, SymmetricMethod method);
+  // The structure a method builds once from the first matrix it solves (cg-amg's aggregates),
+  // built from `m` instead (same pattern, any coefficients); other methods ignore it. A matrix
+  // that depends on the grid alone (a geometric Laplacian) makes the later solves independent
+  // of the run's history, as an exact restart needs.
+  void plan_symmetric(const Matrix& m, SymmetricMethod method);
   // `tolerance` > 0 replaces the solver's own value for this solve (in the solver's norm).
   SolveStats solve_asymmetric(const Matrix& m, std::span<double> x, AsymmetricMethod method,
                               double tolerance = 0);

@@ -232,7 +232,8 @@ class Pimple {
   std::vector<double> fixed_;  // overset: the fixed cells' values (scratch)
   // Overset: the components whose active cells touch a fixed-pressure patch, so that their
   // interface flux is not closed by continuity (overset_mass.cpp), and per such component the
-  // last pressure response to a unit shift of its fringe values (the next solve's first guess).
+  // last pressure response to a unit shift of its fringe values (the next solve's first guess;
+  // emptied at the start of a step, so that nothing of it needs a checkpoint).
   std::vector<int> open_components_;
   std::vector<std::vector<double>> shift_response_;
   // The interface fluxes' response to the shifts (M of overset_mass.cpp) and whether it is of
