@@ -57,6 +57,11 @@ TEST(FV_SUITE, SchaeferTurek2d1) {
 TEST(FV_SUITE, SchaeferTurek2d1Overset) {
   run("schaefer-turek-2d1-overset");
 }
+// The overset pair turning as a whole through fluid at rest (issue 17; quick about 1 s, full
+// m = 32 and 86 degrees): the velocity and pressure stay at round-off.
+TEST(FV_SUITE, RotatingFrameAtRest) {
+  run("rotating-frame-at-rest");
+}
 TEST(FV_SUITE, SchaeferTurek2d2Shedding) {
   run("schaefer-turek-2d2");
 }

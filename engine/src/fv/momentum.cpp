@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // PIMPLE step 2 (docs/cfd.md): the momentum equation per velocity component,
-//     ddt(U) + div(phi, U) - laplacian(nu, U) == -grad(p),
+//     ddt(U) + div(phi - phi_g, U) + Omega x U - laplacian(nu, U) == -grad(p),
+// (phi_g and Omega of a moving grid, motion.hpp; zero at rest)
 // with the face flux phi and the pressure of the previous outer iteration (lagged), deferred
 // convection and non-orthogonal corrections from the current U, and Patankar under-relaxation in
 // all but the final outer iteration. The predictor solves it with -grad(p) of the previous outer
@@ -37,12 +38,13 @@ void Pimple::assemble_momentum(bool final) {
       g[i] = work_.grad_u[i];
     }
   }
+  const auto flux = relative_flux();  // convection relative to the moving grid (motion.hpp)
   for (std::size_t i = 0; i < 3; ++i) {
     if (!active_[i]) continue;
     Matrix& eq = momentum_.eq[i];
     // div(nu_eff grad U) implicit and div(nu_eff dev2(grad U^T)) explicit with a turbulence
     // model, else laplacian(nu, U); no time derivative when steady.
-    const auto convection = div(mesh_, phi, U.c[i], settings_.convection, g[i]);
+    const auto convection = div(mesh_, flux, U.c[i], settings_.convection, g[i]);
     const auto diffusion = turbulence_ ? laplacian(mesh_, turbulence_->nu_eff(), U.c[i], g[i])
                                        : laplacian(mesh_, settings_.nu, U.c[i], g[i]);
     if (settings_.steady) {
@@ -57,10 +59,12 @@ void Pimple::assemble_momentum(bool final) {
       for (std::size_t c = 0; c < f.size(); ++c) f[c] = body_force[c][static_cast<Eigen::Index>(i)];
       eq.add_rhs(mesh_, f);
     }
+    if (rotation_source(i, work_.rhs)) eq.add_rhs(mesh_, work_.rhs);  // -Omega x U, motion.hpp
     if (!final && settings_.relax_u < 1) eq.relax(U.c[i].cells, settings_.relax_u);
-    // Overset (overset.hpp, step 1): fringe rows the donors' interpolation of U, hole rows 0.
+    // Overset (overset.hpp, step 1): fringe rows the donors' interpolation of U, hole rows their
+    // value, the grid velocity (set_hole_velocity).
     if (overset_ != nullptr) {
-      overset_->fixed_values(U.c[i].cells, 0.0, fixed_);
+      overset_->fixed_values(U.c[i].cells, std::numeric_limits<double>::quiet_NaN(), fixed_);
       eq.fix_values(mesh_, overset_->fixed_cells(), fixed_);
     }
   }

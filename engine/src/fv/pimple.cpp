@@ -96,7 +96,9 @@ void Pimple::apply_slip() {
       const int f = patch.start + i;
       const Eigen::Vector3d n = mesh_.area(f).normalized();
       const Eigen::Vector3d u = U.cell(mesh_.owner(f));
-      const Eigen::Vector3d t = u - u.dot(n) * n;
+      // No flux relative to the grid: the normal component is the grid's (zero at rest).
+      const auto& m = motion_[static_cast<std::size_t>(component_of_cell(mesh_.owner(f)))];
+      const Eigen::Vector3d t = u - (u - m.at(mesh_.face_centre(f))).dot(n) * n;
       for (std::size_t c = 0; c < 3; ++c)
         U.c[c].bcs[static_cast<std::size_t>(pi)].value[static_cast<std::size_t>(i)] =
             t[static_cast<Eigen::Index>(c)];
@@ -116,7 +118,8 @@ void Pimple::initialise() {
     for (std::size_t i = 0; i < 3; ++i) overset_->apply(U.c[i].cells, 0.0);
     overset_->apply(p.cells, std::numeric_limits<double>::quiet_NaN());
   }
-  for (const auto& bc : p.bcs) pressure_fixed_ = pressure_fixed_ || bc.kind == BcKind::fixed_value;
+  for (const auto& bc : p.bcs)
+    pressure_fixed_ = pressure_fixed_ || bc.kind == BcKind::fixed_value || bc.kind == BcKind::mixed;
   // The pressure solver's structure (cg-amg's aggregates) from the geometric Laplacian, a
   // function of the grid alone, not from the first step's matrix: a restart continues bitwise.
   solver_.plan_symmetric(Matrix(laplacian(mesh_, 1.0, p)), *settings_.pressure_solver);
@@ -128,8 +131,8 @@ void Pimple::initialise() {
     std::vector<char> open(static_cast<std::size_t>(overset_->components()), 0);
     for (int b = 0; b < mesh_.boundary_faces(); ++b) {
       const int c = mesh_.owner(mesh_.internal_faces() + b);
-      if (p.bcs[static_cast<std::size_t>(mesh_.patch_of(b))].kind == BcKind::fixed_value &&
-          overset_->active(c))
+      const auto kind = p.bcs[static_cast<std::size_t>(mesh_.patch_of(b))].kind;
+      if ((kind == BcKind::fixed_value || kind == BcKind::mixed) && overset_->active(c))
         open[static_cast<std::size_t>(overset_->component_of(c))] = 1;
     }
     std::vector<char> fringe(open.size(), 0);
@@ -138,6 +141,7 @@ void Pimple::initialise() {
     for (std::size_t k = 0; k < open.size(); ++k)
       if (open[k] != 0 && fringe[k] != 0) open_components_.push_back(static_cast<int>(k));
   }
+  apply_motion();
   apply_slip();
   p.update_boundary(mesh_);
   std::array<std::vector<double>, 3> u{U.c[0].cells, U.c[1].cells, U.c[2].cells};
@@ -153,7 +157,7 @@ void Pimple::initialise() {
   for (auto& force : predictor_force_) force.clear();
   steps_ = 0;
   dt_old_ = 0;
-  if (turbulence_) turbulence_->initialise(U, phi);
+  if (turbulence_) turbulence_->initialise(U, relative_flux());
 }
 
 void Pimple::set_time_step(double dt) {
@@ -165,7 +169,7 @@ void Pimple::set_time_step(double dt) {
 // dt for the target Courant number of the current flux (which the step will carry), limited in
 // growth (a flow at rest or slowing down would otherwise jump to large steps at once).
 void Pimple::adapt_time_step() {
-  const double co = courant(mesh_, phi, dt_).first;
+  const double co = courant(mesh_, relative_flux(), dt_).first;
   double dt = dt_ * settings_.max_dt_growth;
   if (co > 0) dt = std::min(dt, dt_ * settings_.target_courant / co);
   if (settings_.max_dt > 0) dt = std::min(dt, settings_.max_dt);
@@ -185,6 +189,7 @@ StepReport Pimple::step() {
   good_.U_old = U_old_;
   good_.phi_old = phi_old_;
   good_.predictor_force = predictor_force_;
+  apply_motion();  // the grids' motion at the new time level: grid flux and boundary values
   if (turbulence_) {
     turbulence_->save();
     turbulence_->begin_step();
@@ -225,7 +230,7 @@ StepReport Pimple::step() {
         TurbulenceInput in;
         in.U = &U;
         in.grad_U = &velocity_gradient();
-        in.phi = phi;
+        in.phi = relative_flux();
         in.time = time_scheme();
         in.steady = settings_.steady;
         in.final = final;
@@ -238,7 +243,7 @@ StepReport Pimple::step() {
       if (outer > 1 && r.outer_residual < settings_.outer_tolerance) break;
     }
     const auto t0 = std::chrono::steady_clock::now();
-    const auto [co, cell] = courant(mesh_, phi, dt_);
+    const auto [co, cell] = courant(mesh_, relative_flux(), dt_);
     r.max_courant = co;
     Scratch<double> d(static_cast<std::size_t>(mesh_.cells()));
     div(mesh_, phi, *d);
@@ -287,7 +292,7 @@ void Pimple::check(const StepReport& r) const {
       throw std::runtime_error("non-finite velocity or pressure in " + cell_at(mesh_, c));
   }
   if (r.max_courant > settings_.max_courant) {
-    const auto [co, cell] = courant(mesh_, phi, dt_);
+    const auto [co, cell] = courant(mesh_, phi_grid_.empty() ? phi : phi_rel_, dt_);
     throw std::runtime_error(fmt::format("Courant number {:.3g} beyond the limit {:.3g} in {}", co,
                                          settings_.max_courant, cell_at(mesh_, cell)));
   }

@@ -34,8 +34,8 @@ Eigen::Vector3d cell_vector(const std::array<std::vector<double>, 3>& u, std::si
 // returns g_P there. The pressure equation still sees the flux condition only.
 bool free_pressure_face(const Mesh& mesh, const ScalarField& p, int f) {
   if (f < mesh.internal_faces()) return false;
-  return p.bcs[static_cast<std::size_t>(mesh.patch_of(f - mesh.internal_faces()))].kind ==
-         BcKind::zero_gradient;
+  const int b = f - mesh.internal_faces();
+  return !p.is_empty(mesh, b) && p.value_coeffs(mesh, b)[0] == 1.0;  // zero gradient here
 }
 
 void extrapolate_zero_gradient(const Mesh& mesh, ScalarField& p) {
@@ -228,7 +228,10 @@ void Pimple::correct_pressure(StepReport& r, bool first, bool final) {
       const auto s = static_cast<std::size_t>(c);
       U.c[i].cells[s] = HbyA[i][s] - D[s] * gp[s][e];
     });
-    if (overset_ != nullptr) overset_->apply(U.c[i].cells, 0.0);  // overset, step 4
+    if (overset_ != nullptr) {  // overset, step 4
+      overset_->apply(U.c[i].cells, std::numeric_limits<double>::quiet_NaN());
+      set_hole_velocity(i);
+    }
     U.c[i].update_boundary(mesh_);
   }
 }
@@ -276,7 +279,7 @@ void Pimple::pressure_flux(std::span<const double> pc, bool corrected,
         out[fs] = W.phiHbyA[fs];
         return;
       }
-      pf = cb;
+      pf = ca == 0.0 ? cb : ca * pc[P] + cb;  // fixed, or mixed with a value fraction below 1
       if (corrected) correction = mesh_.k(f).dot(W.gp[P]);
     }
     out[fs] = W.phiHbyA[fs] - W.Df[fs] * (mesh_.alpha(f) * (pf - pc[P]) + correction);

@@ -109,6 +109,21 @@ struct CylinderResult {
 // `overset`: on the overset pair of cylinder_overset_spec(g) instead.
 CylinderResult schaefer_turek_2d1(const ChannelGrid& g, double dt, bool overset = false);
 
+// rotating-frame-at-rest (moving_grids.cpp): the overset pair of cylinder_overset_spec(g)
+// turning as a whole about the cylinder's axis at `rate` (rad/s) through fluid at rest, with a
+// slip cylinder and a far field on the channel's sides, for `steps` steps of dt. The exact
+// solution is u = 0, p = 0.
+struct RotatingRestResult {
+  int cells = 0, active_cells = 0, steps = 0;
+  double max_u = 0;           // largest |u| over the active cells and steps (m/s)
+  double max_p = 0;           // largest |p| likewise (m^2/s^2)
+  double max_grid_speed = 0;  // largest |w| over the cells (m/s)
+  double continuity_error = 0, max_courant = 0;
+  double turned = 0;  // the angle turned (rad)
+  double seconds = 0;
+};
+RotatingRestResult rotating_frame_at_rest(const ChannelGrid& g, double rate, double dt, int steps);
+
 // Schaefer-Turek 2D-2 (Re = 100, periodic shedding) from rest to end_time with BDF2 at fixed dt;
 // St, cD max and cL max over the last `measured_periods` periods of cL (upward crossings of its
 // mean). periods = 0 when fewer than measured_periods + 2 periods developed (no shedding).

@@ -9,6 +9,9 @@
 //   zero_gradient  phi_b = phi_P (outflow velocity, wall pressure):          a = 1, b = 0
 //   empty          the out-of-plane faces of 2D grids: no flux of any kind; phi_b = phi_P only so
 //                  that gradients see a zero out-of-plane derivative.
+//   mixed          per face phi_b = f value + (1 - f) phi_P, the value fraction f in [0, 1]
+//                  (OpenFOAM's mixed): a = 1 - f, b = f value. A far field (Pimple::far_field)
+//                  switches its faces between fixed (f = 1) and zero gradient (f = 0).
 #pragma once
 
 #include <array>
@@ -19,11 +22,12 @@
 
 namespace auvloop::engine::fv {
 
-enum class BcKind { fixed_value, zero_gradient, empty };
+enum class BcKind { fixed_value, zero_gradient, empty, mixed };
 
 struct PatchBc {
   BcKind kind = BcKind::zero_gradient;
-  std::vector<double> value;  // per face of the patch (fixed_value only)
+  std::vector<double> value;     // per face of the patch (fixed_value, mixed)
+  std::vector<double> fraction;  // per face of the patch: the value fraction f (mixed only)
 };
 
 struct ScalarField {
@@ -38,10 +42,17 @@ struct ScalarField {
 
   // Fixed value `v` on every face of patch `patch` (by name); throws if there is no such patch.
   void fix(const Mesh& mesh, const std::string& patch, double v);
+  // A mixed condition on patch `patch` (by name): every face zero gradient with value `v` until
+  // its fraction is set; throws if there is no such patch or it is periodic.
+  void mix(const Mesh& mesh, const std::string& patch, double v);
   // Re-evaluates the boundary values from the cells (zero gradient, empty) and fixed values.
   void update_boundary(const Mesh& mesh);
   // The coefficients (a, b) of phi_b = a phi_P + b for boundary face b.
   [[nodiscard]] std::array<double, 2> value_coeffs(const Mesh& mesh, int b) const;
+  // Whether boundary face b's value is the fixed one (a = 0: fixed_value, or mixed with f = 1).
+  [[nodiscard]] bool fixes(const Mesh& mesh, int b) const {
+    return value_coeffs(mesh, b)[0] == 0.0;
+  }
   [[nodiscard]] bool is_empty(const Mesh& mesh, int b) const {
     return bcs[static_cast<std::size_t>(mesh.patch_of(b))].kind == BcKind::empty;
   }

@@ -17,6 +17,7 @@
 
 #include "auvloop/engine/fv/field.hpp"
 #include "auvloop/engine/fv/linear_solver.hpp"
+#include "auvloop/engine/fv/motion.hpp"
 #include "auvloop/engine/fv/operators.hpp"
 #include "auvloop/engine/fv/overset.hpp"
 #include "auvloop/engine/fv/turbulence_model.hpp"
@@ -121,6 +122,23 @@ class Pimple {
   // turbulence model does not ride on the coupling yet (std::logic_error).
   void set_overset(const Overset* overset);
   [[nodiscard]] const Overset* overset() const { return overset_; }
+  // Rigid motion of the grids (motion.hpp): the motion of each grid's axes at the new time
+  // level, one per component of an overset mesh (one otherwise), set before every step (a
+  // prescribed motion, or the 6-DOF solution) and before initialise() for the initial flux.
+  // Throws std::invalid_argument naming the problem on a wrong count, a rotating periodic mesh,
+  // slip patches on a moving grid, or a motion out of the plane of a 2D grid.
+  void set_motion(std::vector<FrameMotion> motion);
+  [[nodiscard]] const std::vector<FrameMotion>& motion() const { return motion_; }
+  // A no-slip wall on its moving grid: U = the grid velocity at every face (zero at rest), at
+  // the new time level of every step.
+  void wall(const std::string& patch);
+  // A far field: per face and step, a face through which the stream relative to the grid,
+  // (stream - w) . S, enters or runs along takes U = stream and zero-gradient p (inflow); one it
+  // leaves takes p = 0 and zero-gradient U (outflow). Thus the faces of a box that turns with
+  // the vehicle switch between the two as it turns.
+  void far_field(const std::string& patch);
+  // The grid's face flux phi_g (m^3/s; empty while every grid is at rest).
+  [[nodiscard]] const std::vector<double>& grid_flux() const { return phi_grid_; }
   // Boundary values and face fluxes from the current U (call after setting U and its BCs).
   void initialise();
   StepReport step();
@@ -242,6 +260,26 @@ class Pimple {
   bool shift_current_ = false;
   // Overset: zero flux on the faces that carry none (Overset::live).
   void mask_faces(std::vector<double>& flux) const;
+  // Rigid motion (motion.cpp): at the start of initialise() and of every step, the grid flux,
+  // the wall velocities, the far field's faces and whether any face fixes p.
+  void apply_motion();
+  // Overset: U component i of the hole cells = the grid velocity there (zero at rest): the
+  // solid moves with its grid, and the gradients of the fringe cells next to a hole see the
+  // same values in every frame.
+  void set_hole_velocity(std::size_t i);
+  // The convecting flux phi - phi_g (phi itself while at rest), into work storage.
+  std::span<const double> relative_flux();
+  // -(Omega x U)_i per unit volume for component i's momentum equation, into `out` (false when
+  // no grid rotates).
+  bool rotation_source(std::size_t i, std::vector<double>& out) const;
+  [[nodiscard]] int component_of_cell(int c) const {
+    return overset_ == nullptr ? 0 : overset_->component_of(c);
+  }
+  std::vector<FrameMotion> motion_{FrameMotion{}};
+  bool moving_ = false;  // some grid has moved since construction: the grid flux is kept
+  std::vector<Eigen::Vector3d> face_moment_;  // m_f of motion.hpp (m^3), built on first motion
+  std::vector<double> phi_grid_, phi_rel_;
+  std::vector<int> wall_patches_, far_field_patches_;
 };
 
 // Maximum Courant number dt * sum |phi| / (2 V) over the cells, with the cell where it occurs.
