@@ -6,6 +6,8 @@
 #include <cmath>
 #include <random>
 
+#include <Eigen/Geometry>
+
 #include <gtest/gtest.h>
 
 #include "auvloop/engine/fv/forces.hpp"
@@ -20,8 +22,8 @@ namespace fv = engine::fv;
 namespace {
 
 // A 6 x 5 x 4 box of graded cells whose inner points are moved at random by up to a fifth of a
-// cell, so that its faces are not planar; every side is called "far".
-mesher::Grid warped_box() {
+// cell (unless !warp), so that its faces are not planar; every side is called "far".
+mesher::Grid warped_box(bool warp = true) {
   mesher::BoxPatches patches;
   patches.names = {"far0", "far1", "far2", "far3", "far4", "far5"};
   auto grid = mesher::cartesian_box(mesher::graded_nodes(0, 1.2, 6, 1.3),
@@ -32,7 +34,7 @@ mesher::Grid warped_box() {
   for (auto& x : grid.points) {
     const bool inner = x.x() > 1e-9 && x.x() < 1.2 - 1e-9 && std::abs(x.y()) < 0.5 - 1e-9 &&
                        x.z() > 1e-9 && x.z() < 0.8 - 1e-9;
-    if (inner) x += Eigen::Vector3d(d(rng), d(rng), d(rng));
+    if (inner && warp) x += Eigen::Vector3d(d(rng), d(rng), d(rng));
   }
   return grid;
 }
@@ -189,4 +191,48 @@ TEST(FvMotion, ATowedCylinderIsTheFixedCylinderInAStream) {
   EXPECT_LT(dp / p_scale, 1e-6);
   EXPECT_GT(fixed.force.norm(), 0.0);
   EXPECT_LT((fixed.force - towed.force).norm() / fixed.force.norm(), 1e-6);
+}
+
+// A uniform current seen from turning axes: u(t) = R(t)^T U_c, which in those axes obeys
+// du/dt = -Omega x u, the term motion.hpp adds; the far field is given the exact value every step.
+// BDF2 must converge to it at second order (a wrong sign or a missing term leaves an O(1) error).
+// On the box with planar faces: with the warped faces the error stops at 2.9e-3 m/s below 12
+// steps (2.90e-3, 2.87e-3 at 12, 24 steps; a pressure of 1e-3 m^2/s^2 remains), which is not
+// understood yet (docs/cfd.md, "Moving grids").
+TEST(FvMotion, ACurrentSeenFromTurningAxesTurnsAtSecondOrder) {
+  const auto grid = warped_box(false);
+  const fv::Mesh mesh(grid);
+  const Eigen::Vector3d rate(0.3, -0.4, 1.2), current(1.0, 0.2, -0.1);
+  const double end = 0.6;
+  auto exact = [&](double t) -> Eigen::Vector3d {
+    return Eigen::AngleAxisd(-rate.norm() * t, rate.normalized()) * current;
+  };
+  auto error = [&](int steps) {
+    fv::PimpleSettings s;
+    s.nu = 1e-2;
+    s.dt = end / steps;
+    s.outer_iterations = 6;  // the explicit -Omega x u converged within each step
+    s.tolerance = 1e-12;
+    fv::Pimple flow(mesh, s);
+    for (const auto& patch : grid.patches) flow.far_field(patch.name);
+    for (std::size_t i = 0; i < 3; ++i)
+      std::fill(flow.U.c[i].cells.begin(), flow.U.c[i].cells.end(),
+                current[static_cast<Eigen::Index>(i)]);
+    fv::FrameMotion m;
+    m.rate = rate;
+    m.stream = exact(0);
+    flow.set_motion({m});
+    flow.initialise();
+    for (int k = 1; k <= steps; ++k) {
+      m.stream = exact(k * s.dt);
+      flow.set_motion({m});
+      flow.step();
+    }
+    double e = 0;
+    for (int c = 0; c < mesh.cells(); ++c) e = std::max(e, (flow.U.cell(c) - exact(end)).norm());
+    return e;
+  };
+  const double coarse = error(12), fine = error(24);
+  EXPECT_LT(coarse, 2e-2);  // of |U_c| = 1.02 m/s, turned by 0.78 rad
+  EXPECT_GT(std::log2(coarse / fine), 1.8) << coarse << " " << fine;
 }

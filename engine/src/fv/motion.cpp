@@ -128,6 +128,11 @@ void Pimple::apply_motion() {
   for (int pi : far_field_patches_) {  // 4.
     const auto& patch = grid.patches[static_cast<std::size_t>(pi)];
     const auto ps = static_cast<std::size_t>(pi);
+    const auto faces = static_cast<std::size_t>(patch.size);
+    for (const auto* bc : {&U.c[0].bcs[ps], &U.c[1].bcs[ps], &U.c[2].bcs[ps], &p.bcs[ps]})
+      if (bc->kind != BcKind::mixed || bc->fraction.size() != faces || bc->value.size() != faces)
+        throw std::logic_error("Pimple: patch '" + patch.name +
+                               "' is a far field, but a condition of U or p on it was changed");
     for (int i = 0; i < patch.size; ++i) {
       const int f = patch.start + i;
       const auto is = static_cast<std::size_t>(i);
