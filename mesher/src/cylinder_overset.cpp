@@ -5,6 +5,8 @@
 //   2. the background: a Cartesian channel, uniform to near_end and stretched from there to the
 //      outlet with its first cell the uniform spacing;
 //   3. the solid: the cylinder as a closed prism through both grids' thickness and beyond.
+// The unconfined variant: the same O-grid at the origin over a square box whose uniform core
+// grows geometrically to the sides (cored_nodes).
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -72,7 +74,56 @@ Grid background(const CylinderOversetSpec& s) {
   g.name = "background";
   return g;
 }
+// Nodes from -half to half through the uniform core [lo, hi] (cells of about h), growing by at
+// most `growth` from the core's ends outwards.
+std::vector<double> cored_nodes(double half, double lo, double hi, double h, double growth) {
+  const int n = std::max(1, static_cast<int>(std::lround((hi - lo) / h)));
+  const auto core = graded_nodes(lo, hi, n);
+  const double first = (hi - lo) / n;
+  const auto below = grown_nodes(0, lo + half, first, growth);  // distances below the core
+  std::vector<double> x;
+  for (auto it = below.rbegin(); it != below.rend(); ++it) x.push_back(lo - *it);
+  x.insert(x.end(), core.begin() + 1, core.end());
+  const auto above = grown_nodes(hi, half, first, growth);
+  x.insert(x.end(), above.begin() + 1, above.end());
+  return x;
+}
 }  // namespace
+
+CylinderOverset unconfined_cylinder_overset(const UnconfinedCylinderSpec& u) {
+  const double D = u.diameter, half = 0.5 * u.extent * D;
+  const double R = u.outer_radius * D;
+  if (!(D > 0) || !(u.outer_radius > 0.5) || !(u.growth > 1) ||
+      !(std::min({u.core_upstream, u.core_downstream, u.core_side}) * D > R) ||
+      !(std::max({u.core_upstream, u.core_downstream, u.core_side}) * D < half))
+    throw std::invalid_argument(fmt::format(
+        "unconfined_cylinder_overset: the O-grid (to {} D) must fit inside the uniform core "
+        "(-{} .. {} D by +-{} D) and the core inside the box ({} D across), growth above 1",
+        u.outer_radius, u.core_upstream, u.core_downstream, u.core_side, u.extent));
+  CylinderOversetSpec s;  // the O-grid's part of the channel spec
+  s.cx = 0;
+  s.cy = 0;
+  s.radius = 0.5 * D;
+  s.outer_radius = R;
+  s.around = u.around;
+  s.radial_cells = u.radial_cells;
+  s.radial_ratio = u.radial_ratio;
+  s.thickness = u.thickness * D;
+  CylinderOverset out;
+  out.cylinder = o_grid(s);
+  const double h = 2 * std::numbers::pi * R / u.around;
+  const auto x = cored_nodes(half, -u.core_upstream * D, u.core_downstream * D, h, u.growth);
+  const auto y = cored_nodes(half, -u.core_side * D, u.core_side * D, h, u.growth);
+  BoxPatches names;
+  names.names = {"west", "east", "south", "north", "front", "back"};
+  names.types = {PatchType::inlet, PatchType::outlet, PatchType::inlet,
+                 PatchType::inlet, PatchType::empty,  PatchType::empty};
+  out.background = cartesian_box(x, y, {0.0, s.thickness}, names);
+  out.background.name = "background";
+  out.solid = geometry::cylinder_surface(0, 0, s.radius, -s.thickness, 2 * s.thickness,
+                                         std::max(512, 8 * s.around));
+  return out;
+}
 
 CylinderOverset cylinder_overset(const CylinderOversetSpec& s) {
   const double gap = std::min({s.cx, s.cy, s.height - s.cy, s.near_end - s.cx}) - s.outer_radius;

@@ -134,3 +134,41 @@ TEST(CylinderOverset, RejectsBadInput) {
   OversetAssembler two({{&pair.cylinder, 1, &pair.solid}, {&pair.background, 0, nullptr}});
   EXPECT_THROW(two.assemble({0.1}), std::logic_error);
 }
+
+// The unconfined variant: a square box of the stated extent centred on the cylinder, uniform
+// cells of the O-grid's outer size in the core growing by at most the stated ratio outside it,
+// the four far-field sides named, and an assembly with the cylinder cut out and no orphans.
+TEST(CylinderOverset, TheUnconfinedBoxIsCentredGradedAndAssembles) {
+  UnconfinedCylinderSpec spec;
+  spec.around = 32;
+  spec.radial_cells = 16;
+  const auto pair = unconfined_cylinder_overset(spec);
+  for (const Grid* g : {&pair.cylinder, &pair.background})
+    EXPECT_NO_THROW(validate(*g, compute_geometry(*g))) << g->name;
+  std::vector<std::string> names;
+  for (const auto& p : pair.background.patches) names.push_back(p.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"west", "east", "south", "north", "front", "back"}));
+  double lo = 1e9, hi = -1e9, bottom = 1e9, top = -1e9, smallest = 1e9, largest = 0;
+  for (const auto& x : pair.background.points) {
+    lo = std::min(lo, x.x());
+    hi = std::max(hi, x.x());
+    bottom = std::min(bottom, x.y());
+    top = std::max(top, x.y());
+  }
+  const auto g = compute_geometry(pair.background);
+  for (int c = 0; c < pair.background.cells; ++c) {
+    const double v = g.cell_volume[static_cast<std::size_t>(c)] / (spec.thickness * spec.diameter);
+    smallest = std::min(smallest, v);
+    largest = std::max(largest, v);
+  }
+  const double h = 2 * std::numbers::pi * spec.outer_radius / spec.around;
+  EXPECT_NEAR(smallest, h * h, 0.05 * h * h);  // the core's cells
+  EXPECT_GT(largest, 25 * h * h);              // grown towards the sides
+  for (double side : {-lo, hi, -bottom, top}) EXPECT_NEAR(side, 0.5 * spec.extent, 1e-9);
+  OversetAssembler assembler({{&pair.cylinder, 1, &pair.solid}, {&pair.background, 0, nullptr}});
+  const auto a = assembler.assemble();
+  EXPECT_EQ(a.grids[0].count(CellStatus::orphan) + a.grids[1].count(CellStatus::orphan), 0);
+  EXPECT_GT(a.grids[1].count(CellStatus::hole), 0);
+  spec.core_side = 1.0;  // the O-grid (to 1.5 D) no longer fits in the core
+  EXPECT_THROW(unconfined_cylinder_overset(spec), std::invalid_argument);
+}

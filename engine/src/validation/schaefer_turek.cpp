@@ -22,6 +22,7 @@
 #include "auvloop/mesher/composite_grid.hpp"
 #include "auvloop/mesher/cylinder_grid.hpp"
 #include "auvloop/mesher/overset.hpp"
+#include "signal.hpp"
 #include "wall_stencil.hpp"
 
 namespace auvloop::engine::validation {
@@ -261,29 +262,6 @@ CylinderResult schaefer_turek_2d1(const ChannelGrid& g, double dt, bool overset)
   r.seconds = seconds_since(t_start);
   return r;
 }
-
-namespace {
-// Times at which x(t) - mean crosses zero upwards, interpolated linearly between samples.
-std::vector<double> upward_crossings(const std::vector<double>& t, const std::vector<double>& x) {
-  double mean = 0;
-  for (double v : x) mean += v / static_cast<double>(x.size());
-  std::vector<double> out;
-  for (std::size_t i = 1; i < x.size(); ++i) {
-    const double a = x[i - 1] - mean, b = x[i] - mean;
-    if (a < 0 && b >= 0) out.push_back(t[i - 1] + (t[i] - t[i - 1]) * (-a) / (b - a));
-  }
-  return out;
-}
-
-// Maximum of sampled x, refined by the parabola through the largest sample and its neighbours
-// (the sampling error of a peak is O(dt^2) otherwise).
-double peak(const std::vector<double>& x) {
-  const auto it = std::max_element(x.begin() + 1, x.end() - 1);
-  const double a = *(it - 1), b = *it, c = *(it + 1);
-  const double den = a - 2 * b + c;
-  return den < 0 ? b - (c - a) * (c - a) / (8 * den) : b;
-}
-}  // namespace
 
 SheddingResult schaefer_turek_2d2(const SheddingCase& k) {
   const auto t_start = std::chrono::steady_clock::now();

@@ -124,6 +124,22 @@ struct RotatingRestResult {
 };
 RotatingRestResult rotating_frame_at_rest(const ChannelGrid& g, double rate, double dt, int steps);
 
+// galilean-cylinder (moving_grids.cpp): the unconfined cylinder at Re = 100 (U = 1 m/s, D = 1
+// m, nu = 0.01 m^2/s) on mesher::unconfined_cylinder_overset(g), a far field on the box's four
+// sides, from the stream (plus a cross-flow bump that starts the shedding) to end_time with
+// BDF2 steps of dt; `towed`: the grids move at -U through fluid at rest instead of the cylinder
+// fixed in the stream. St, mean cD and the cL amplitude over the last `measured_periods`
+// periods of cL (periods = 0 without settled shedding).
+struct UnconfinedCylinderResult {
+  int cells = 0, active_cells = 0, steps = 0, periods = 0;
+  double strouhal = 0, cd_mean = 0, cl_amplitude = 0;
+  double period_drift = 0;  // relative change of the window's length from the previous window
+  double max_courant = 0, seconds = 0;
+  std::vector<double> t, cd, cl;
+};
+UnconfinedCylinderResult unconfined_cylinder(const mesher::UnconfinedCylinderSpec& g, bool towed,
+                                             double dt, double end_time, int measured_periods);
+
 // Schaefer-Turek 2D-2 (Re = 100, periodic shedding) from rest to end_time with BDF2 at fixed dt;
 // St, cD max and cL max over the last `measured_periods` periods of cL (upward crossings of its
 // mean). periods = 0 when fewer than measured_periods + 2 periods developed (no shedding).

@@ -65,6 +65,27 @@ struct CylinderOverset {
 
 CylinderOverset cylinder_overset(const CylinderOversetSpec& spec);
 
+// The unconfined cylinder (issue 17's galilean-cylinder; validation-data.md section 3 asks for a
+// domain at least 30 D across): the same O-grid round a cylinder of `diameter` centred at the
+// origin, out to outer_radius diameters, over a square background `extent` diameters across
+// centred on it, whose cells are uniform (the O-grid's outer tangential size) in the core
+// [-core_upstream, core_downstream] x [-core_side, core_side] diameters and grow by at most
+// `growth` per cell from there to the sides. Patches of the background: west, east, south,
+// north (for a far field: Pimple::far_field) and front, back (empty); the O-grid's as in
+// cylinder_overset. Throws std::invalid_argument when the O-grid does not fit in the core.
+struct UnconfinedCylinderSpec {
+  double diameter = 1.0;
+  double outer_radius = 1.5;  // in diameters
+  int around = 64;
+  int radial_cells = 32;
+  double radial_ratio = 8.0;
+  double extent = 40.0;                                                // in diameters
+  double core_upstream = 2.0, core_downstream = 6.0, core_side = 2.0;  // in diameters
+  double growth = 1.1;
+  double thickness = 0.1;  // in diameters
+};
+CylinderOverset unconfined_cylinder_overset(const UnconfinedCylinderSpec& spec);
+
 // Face-addressed grid from hexahedra given by eight point indices each (VTK/OpenFOAM hex order:
 // bottom quad 0-1-2-3 counter-clockwise seen from above, top quad 4-5-6-7 above it). Shared faces
 // become internal faces (owner < neighbour, upper-triangular order); boundary faces are grouped
