@@ -110,7 +110,6 @@ void Pimple::apply_slip() {
 void Pimple::initialise() {
   if (overset_ != nullptr && turbulence_ != nullptr)
     throw std::logic_error("Pimple: a turbulence model on an overset mesh is not supported yet");
-  pressure_fixed_ = false;
   reference_cell_ = overset_ == nullptr || overset_->active_cells().empty()
                         ? 0
                         : overset_->active_cells().front();
@@ -118,8 +117,6 @@ void Pimple::initialise() {
     for (std::size_t i = 0; i < 3; ++i) overset_->apply(U.c[i].cells, 0.0);
     overset_->apply(p.cells, std::numeric_limits<double>::quiet_NaN());
   }
-  for (const auto& bc : p.bcs)
-    pressure_fixed_ = pressure_fixed_ || bc.kind == BcKind::fixed_value || bc.kind == BcKind::mixed;
   // The pressure solver's structure (cg-amg's aggregates) from the geometric Laplacian, a
   // function of the grid alone, not from the first step's matrix: a restart continues bitwise.
   solver_.plan_symmetric(Matrix(laplacian(mesh_, 1.0, p)), *settings_.pressure_solver);

@@ -29,14 +29,26 @@
 
 namespace auvloop::engine::validation {
 
+namespace {
+// A cylinder pair (O-grid over a background) assembled, merged and coupled.
+struct CoupledPair {
+  mesher::CompositeSystem system;
+  fv::Mesh mesh;
+  fv::Overset overset;
+  explicit CoupledPair(const mesher::CylinderOverset& pair)
+      : system(mesher::composite_system(
+            {{&pair.cylinder, 1, &pair.solid}, {&pair.background, 0, nullptr}})),
+        mesh(system.composite.grid),
+        overset(mesh, system.stencils, system.composite.cell_offset) {}
+};
+}  // namespace
+
 RotatingRestResult rotating_frame_at_rest(const ChannelGrid& g, double rate, double dt, int steps) {
   const auto t0 = std::chrono::steady_clock::now();
   const auto spec = cylinder_overset_spec(g);
-  const auto pair = mesher::cylinder_overset(spec);
-  const auto system =
-      mesher::composite_system({{&pair.cylinder, 1, &pair.solid}, {&pair.background, 0, nullptr}});
-  const fv::Mesh mesh(system.composite.grid);
-  const fv::Overset overset(mesh, system.stencils, system.composite.cell_offset);
+  const CoupledPair coupled(mesher::cylinder_overset(spec));
+  const auto& mesh = coupled.mesh;
+  const auto& overset = coupled.overset;
   fv::PimpleSettings s;
   s.nu = 1e-3;
   s.dt = dt;
@@ -80,11 +92,9 @@ UnconfinedCylinderResult unconfined_cylinder(const mesher::UnconfinedCylinderSpe
   const auto t0 = std::chrono::steady_clock::now();
   constexpr double U = 1.0;  // m/s
   const double D = g.diameter;
-  const auto pair = mesher::unconfined_cylinder_overset(g);  // 1.
-  const auto system =
-      mesher::composite_system({{&pair.cylinder, 1, &pair.solid}, {&pair.background, 0, nullptr}});
-  const fv::Mesh mesh(system.composite.grid);
-  const fv::Overset overset(mesh, system.stencils, system.composite.cell_offset);
+  const CoupledPair coupled(mesher::unconfined_cylinder_overset(g));  // 1.
+  const auto& mesh = coupled.mesh;
+  const auto& overset = coupled.overset;
   fv::PimpleSettings s;
   s.nu = U * D / 100;
   s.dt = dt;

@@ -225,7 +225,9 @@ class Pimple {
   Saved good_;
   std::array<bool, 3> active_{true, true, true};  // components not normal to empty patches
   std::vector<int> slip_patches_;
-  bool pressure_fixed_ = false;  // some patch fixes p; otherwise cell 0 is the reference
+  // Some boundary face fixes p (apply_motion decides it every step, as a far field's faces
+  // switch); otherwise the reference cell does.
+  bool pressure_fixed_ = false;
   // Old time levels: [0] = n, [1] = n - 1.
   std::array<std::array<std::vector<double>, 3>, 2> U_old_;
   std::array<std::vector<double>, 2> phi_old_;
