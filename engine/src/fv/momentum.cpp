@@ -64,7 +64,7 @@ void Pimple::assemble_momentum(bool final) {
     // Overset (overset.hpp, step 1): fringe rows the donors' interpolation of U, hole rows their
     // value, the grid velocity (set_hole_velocity).
     if (overset_ != nullptr) {
-      overset_->fixed_values(U.c[i].cells, std::numeric_limits<double>::quiet_NaN(), fixed_);
+      overset_->fixed_values({U.c[0].cells, U.c[1].cells, U.c[2].cells}, i, fixed_);
       eq.fix_values(mesh_, overset_->fixed_cells(), fixed_);
     }
   }

@@ -54,6 +54,17 @@ void Pimple::set_motion(std::vector<FrameMotion> motion) {
   motion_ = std::move(motion);
 }
 
+FrameMotion placed_motion(const FrameMotion& body, const Eigen::Isometry3d& placement,
+                          const Eigen::Vector3d& rate, const Eigen::Vector3d& pivot) {
+  const Eigen::Matrix3d Rt = placement.linear().transpose();
+  const Eigen::Vector3d t = placement.translation();
+  FrameMotion m;
+  m.velocity = Rt * (body.velocity + body.rate.cross(t) + rate.cross(t - pivot));
+  m.rate = Rt * (body.rate + rate);
+  m.stream = Rt * body.stream;
+  return m;
+}
+
 void Pimple::wall(const std::string& patch) {
   const int pi = patch_index(mesh_, patch);
   U.fix(mesh_, patch, {0, 0, 0});

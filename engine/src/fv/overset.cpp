@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -14,27 +15,39 @@ namespace auvloop::engine::fv {
 using mesher::CellStatus;
 
 Overset::Overset(const Mesh& mesh, mesher::CompositeStencils stencils, std::vector<int> cell_offset)
-    : mesh_(mesh), stencils_(std::move(stencils)), cell_offset_(std::move(cell_offset)) {
+    : mesh_(mesh), cell_offset_(std::move(cell_offset)) {
+  if (cell_offset_.empty() || cell_offset_.front() != 0 ||
+      !std::is_sorted(cell_offset_.begin(), cell_offset_.end()) ||
+      cell_offset_.back() >= mesh.cells())
+    throw std::invalid_argument("Overset: component offsets must start at 0 and ascend");
+  assign(std::move(stencils));
+  set_orientation(std::vector<Eigen::Matrix3d>(cell_offset_.size(), Eigen::Matrix3d::Identity()));
+}
+
+void Overset::update(mesher::CompositeStencils stencils) {
+  assign(std::move(stencils));
+}
+
+void Overset::assign(mesher::CompositeStencils stencils) {
+  const auto& mesh = mesh_;
   const auto n = static_cast<std::size_t>(mesh.cells());
-  const auto& s = stencils_;
+  const auto& s = stencils;
   if (s.status.size() != n || s.offsets.size() != n + 1 ||
       s.donors.size() != static_cast<std::size_t>(s.offsets.back()) ||
       s.weights.size() != s.donors.size())
     throw std::invalid_argument(
         fmt::format("Overset: the stencils are for {} cells, the mesh has {}", s.status.size(), n));
-  if (cell_offset_.empty() || cell_offset_.front() != 0 ||
-      !std::is_sorted(cell_offset_.begin(), cell_offset_.end()) ||
-      cell_offset_.back() >= mesh.cells())
-    throw std::invalid_argument("Overset: component offsets must start at 0 and ascend");
+  std::vector<int> fixed, fringe, active_cells;
+  double active_volume = 0;
   for (int c = 0; c < mesh.cells(); ++c) {
     const auto cu = static_cast<std::size_t>(c);
     switch (s.status[cu]) {
       case CellStatus::active:
-        active_cells_.push_back(c);
-        active_volume_ += mesh.volume(c);
+        active_cells.push_back(c);
+        active_volume += mesh.volume(c);
         break;
       case CellStatus::hole:
-        fixed_.push_back(c);
+        fixed.push_back(c);
         break;
       case CellStatus::orphan:
         throw std::invalid_argument(
@@ -42,8 +55,8 @@ Overset::Overset(const Mesh& mesh, mesher::CompositeStencils stencils, std::vect
                         "donors",
                         c, component_of(c)));
       case CellStatus::fringe: {
-        fixed_.push_back(c);
-        fringe_.push_back(c);
+        fixed.push_back(c);
+        fringe.push_back(c);
         double sum = 0;
         for (int k = s.offsets[cu]; k < s.offsets[cu + 1]; ++k) {
           const int d = s.donors[static_cast<std::size_t>(k)];
@@ -61,12 +74,40 @@ Overset::Overset(const Mesh& mesh, mesher::CompositeStencils stencils, std::vect
       }
     }
   }
+  stencils_ = std::move(stencils);
+  fixed_ = std::move(fixed);
+  fringe_ = std::move(fringe);
+  active_cells_ = std::move(active_cells);
+  active_volume_ = active_volume;
   live_.assign(static_cast<std::size_t>(mesh.faces()), 0);
   for (int f = 0; f < mesh.faces(); ++f) {
     const bool own = active(mesh.owner(f));
     live_[static_cast<std::size_t>(f)] =
         own || (f < mesh.internal_faces() && active(mesh.neighbour(f))) ? 1 : 0;
   }
+}
+
+void Overset::set_orientation(std::vector<Eigen::Matrix3d> orientation) {
+  const auto K = cell_offset_.size();
+  if (orientation.size() != K)
+    throw std::invalid_argument(
+        fmt::format("Overset::set_orientation: {} orientations for {} "
+                    "components",
+                    orientation.size(), K));
+  for (std::size_t k = 0; k < K; ++k) {
+    const auto& R = orientation[k];
+    if (!R.allFinite() || !(R.transpose() * R).isIdentity(1e-12) || !(R.determinant() > 0))
+      throw std::invalid_argument(
+          fmt::format("Overset::set_orientation: component {}'s orientation is not a rotation", k));
+  }
+  orientation_ = std::move(orientation);
+  rotation_.resize(K * K);
+  turned_ = false;
+  for (std::size_t h = 0; h < K; ++h)
+    for (std::size_t g = 0; g < K; ++g) {
+      rotation_[h * K + g] = orientation_[h].transpose() * orientation_[g];
+      turned_ = turned_ || orientation_[h] != orientation_[g];
+    }
 }
 
 int Overset::component_of(int c) const {
@@ -82,6 +123,50 @@ double Overset::interpolate(std::span<const double> field, int c) const {
     v += stencils_.weights[ku] * field[static_cast<std::size_t>(stencils_.donors[ku])];
   }
   return v;
+}
+
+Eigen::Vector3d Overset::interpolate(const Vector& u, int c) const {
+  const auto cu = static_cast<std::size_t>(c);
+  const int h = component_of(c);
+  Eigen::Vector3d v = Eigen::Vector3d::Zero();
+  for (int k = stencils_.offsets[cu]; k < stencils_.offsets[cu + 1]; ++k) {
+    const auto ku = static_cast<std::size_t>(k);
+    const int d = stencils_.donors[ku];
+    const auto du = static_cast<std::size_t>(d);
+    const Eigen::Vector3d ud(u[0][du], u[1][du], u[2][du]);
+    const int g = component_of(d);
+    v += stencils_.weights[ku] * (g == h ? ud : Eigen::Vector3d(rotation(h, g) * ud));
+  }
+  return v;
+}
+
+void Overset::fixed_values(const Vector& u, std::size_t i, std::vector<double>& out) const {
+  if (!turned_) {
+    fixed_values(u[i], std::numeric_limits<double>::quiet_NaN(), out);
+    return;
+  }
+  out.resize(fixed_.size());
+  const auto e = static_cast<Eigen::Index>(i);
+  for (std::size_t j = 0; j < fixed_.size(); ++j) {
+    const int c = fixed_[j];
+    out[j] =
+        status(c) == CellStatus::fringe ? interpolate(u, c)[e] : u[i][static_cast<std::size_t>(c)];
+  }
+}
+
+void Overset::apply(const std::array<std::span<double>, 3>& u) const {
+  if (!turned_) {
+    for (const auto& ui : u) apply(ui, std::numeric_limits<double>::quiet_NaN());
+    return;
+  }
+  // The donors are active, so writing the fringe cells after all are interpolated is the same
+  // as in place; kept apart for clarity.
+  const Vector in{u[0], u[1], u[2]};
+  scratch_.resize(fringe_.size());
+  for (std::size_t j = 0; j < fringe_.size(); ++j) scratch_[j] = interpolate(in, fringe_[j]);
+  for (std::size_t j = 0; j < fringe_.size(); ++j)
+    for (std::size_t i = 0; i < 3; ++i)
+      u[i][static_cast<std::size_t>(fringe_[j])] = scratch_[j][static_cast<Eigen::Index>(i)];
 }
 
 void Overset::fixed_values(std::span<const double> field, double hole,

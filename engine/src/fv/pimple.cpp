@@ -114,30 +114,16 @@ void Pimple::initialise() {
                         ? 0
                         : overset_->active_cells().front();
   if (overset_ != nullptr) {
-    for (std::size_t i = 0; i < 3; ++i) overset_->apply(U.c[i].cells, 0.0);
+    overset_->apply(std::array<std::span<double>, 3>{U.c[0].cells, U.c[1].cells, U.c[2].cells});
     overset_->apply(p.cells, std::numeric_limits<double>::quiet_NaN());
   }
   // The pressure solver's structure (cg-amg's aggregates) from the geometric Laplacian, a
   // function of the grid alone, not from the first step's matrix: a restart continues bitwise.
   solver_.plan_symmetric(Matrix(laplacian(mesh_, 1.0, p)), *settings_.pressure_solver);
   // Overset: the open components (overset_mass.cpp), those with fringe cells and an active cell
-  // on a fixed-pressure patch.
-  open_components_.clear();
-  shift_response_.clear();
-  if (overset_ != nullptr) {
-    std::vector<char> open(static_cast<std::size_t>(overset_->components()), 0);
-    for (int b = 0; b < mesh_.boundary_faces(); ++b) {
-      const int c = mesh_.owner(mesh_.internal_faces() + b);
-      const auto kind = p.bcs[static_cast<std::size_t>(mesh_.patch_of(b))].kind;
-      if ((kind == BcKind::fixed_value || kind == BcKind::mixed) && overset_->active(c))
-        open[static_cast<std::size_t>(overset_->component_of(c))] = 1;
-    }
-    std::vector<char> fringe(open.size(), 0);
-    for (int c : overset_->fringe_cells())
-      fringe[static_cast<std::size_t>(overset_->component_of(c))] = 1;
-    for (std::size_t k = 0; k < open.size(); ++k)
-      if (open[k] != 0 && fringe[k] != 0) open_components_.push_back(static_cast<int>(k));
-  }
+  // on a fixed-pressure patch; the statuses the fields are now of.
+  find_open_components();
+  snapshot_status();
   apply_motion();
   apply_slip();
   p.update_boundary(mesh_);
@@ -179,6 +165,7 @@ StepReport Pimple::step() {
   if (!body_force.empty() && body_force.size() != static_cast<std::size_t>(mesh_.cells()))
     throw std::invalid_argument(fmt::format("Pimple: body_force has {} entries for {} cells",
                                             body_force.size(), mesh_.cells()));
+  follow_assembly();  // overset re-assembly: the fields onto the new statuses
   // Copy assignments into kept storage: no allocation after the first step.
   good_.U = U;
   good_.p = p;

@@ -228,12 +228,12 @@ void Pimple::correct_pressure(StepReport& r, bool first, bool final) {
       const auto s = static_cast<std::size_t>(c);
       U.c[i].cells[s] = HbyA[i][s] - D[s] * gp[s][e];
     });
-    if (overset_ != nullptr) {  // overset, step 4
-      overset_->apply(U.c[i].cells, std::numeric_limits<double>::quiet_NaN());
-      set_hole_velocity(i);
-    }
-    U.c[i].update_boundary(mesh_);
   }
+  if (overset_ != nullptr) {  // overset, step 4 (a turned donor's vector needs all components)
+    overset_->apply(std::array<std::span<double>, 3>{U.c[0].cells, U.c[1].cells, U.c[2].cells});
+    for (std::size_t i = 0; i < 3; ++i) set_hole_velocity(i);
+  }
+  U.update_boundary(mesh_);
 }
 
 // The predictor force (pimple.hpp): (H(U) - A U) / V per active component with the equation of

@@ -22,6 +22,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 namespace auvloop::engine::fv {
 
@@ -38,5 +39,18 @@ struct FrameMotion {
   }
   [[nodiscard]] bool at_rest() const { return velocity.isZero(0) && rate.isZero(0); }
 };
+
+// The motion of a grid's axes that turn within a moving body (a fin on its post, a foil pitching
+// over a background at rest): `body` the motion of the body's axes (its stream the far field's,
+// all resolved in the body's axes), `placement` the grid's axes in the body's (x_body =
+// placement * x_grid; for a grid that was merged into a composite mesh at placement P0 and now
+// stands at P, placement = P * P0^-1), and the grid turning relative to the body at `rate`
+// (rad/s, body axes) about the point `pivot` (body axes). With R and t the placement's rotation
+// and translation, the grid velocity w(y) = V + Omega x y + rate x (y - pivot) at y = R x + t,
+// resolved in the grid's axes, is R^T w(R x + t) = velocity + rate_g x x with
+//     velocity = R^T (V + Omega x t + rate x (t - pivot)),  rate_g = R^T (Omega + rate),
+// and stream = R^T stream_body.
+FrameMotion placed_motion(const FrameMotion& body, const Eigen::Isometry3d& placement,
+                          const Eigen::Vector3d& rate, const Eigen::Vector3d& pivot);
 
 }  // namespace auvloop::engine::fv

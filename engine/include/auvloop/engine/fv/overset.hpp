@@ -12,12 +12,24 @@
 //      that its U = HbyA - D grad(p) is the interpolated velocity, as in an active cell;
 //   4. after each corrector: fringe U from the donors again, hole U = 0;
 //   5. face mask: a face carries flux only if one of its cells is active (`live`); others zero.
-// Invariants (checked by the constructor): the stencils match the mesh; every fringe cell has a
-// stencil whose donors are all active and whose weights sum to one; no cell is an orphan.
+// Grids that turn against each other (a fin on its post, a pitching foil): every component keeps
+// its cells at rest in its own axes (motion.hpp), so a vector interpolated from a donor of
+// component g into a fringe cell of component h is turned from g's axes into h's:
+// u_h = R_h^T R_g u_g, R_k the orientation of component k's axes in the system's (identity at
+// construction). The stencils' weights are scalars, the same in every frame.
+// When the grids move, the driver re-assembles at the new placements before each step and
+// passes the result to update(); Pimple then carries the cells that came out of a hole
+// (pimple.hpp, "Overset re-assembly").
+// Invariants (checked by the constructor and update): the stencils match the mesh; every fringe
+// cell has a stencil whose donors are all active and whose weights sum to one; no cell is an
+// orphan.
 #pragma once
 
+#include <array>
 #include <span>
 #include <vector>
+
+#include <Eigen/Core>
 
 #include "auvloop/engine/fv/mesh.hpp"
 #include "auvloop/mesher/composite_grid.hpp"
@@ -31,6 +43,19 @@ class Overset {
   // invariant.
   Overset(const Mesh& mesh, mesher::CompositeStencils stencils, std::vector<int> cell_offset);
 
+  // A new assembly of the same composite mesh (the grids moved). Throws std::invalid_argument
+  // naming the first violated invariant, leaving this coupling unchanged.
+  void update(mesher::CompositeStencils stencils);
+  // The orientation of each component's axes in the system's (rotation matrices, one per
+  // component). Throws std::invalid_argument on a wrong count or a matrix that is not a rotation.
+  void set_orientation(std::vector<Eigen::Matrix3d> orientation);
+  // Whether some component's axes are turned against another's.
+  [[nodiscard]] bool turned() const { return turned_; }
+  // Rotation from component g's axes into component h's: R_h^T R_g.
+  [[nodiscard]] const Eigen::Matrix3d& rotation(int h, int g) const {
+    return rotation_[static_cast<std::size_t>(h * components() + g)];
+  }
+
   [[nodiscard]] mesher::CellStatus status(int c) const {
     return stencils_.status[static_cast<std::size_t>(c)];
   }
@@ -43,23 +68,37 @@ class Overset {
   [[nodiscard]] bool live(int f) const { return live_[static_cast<std::size_t>(f)] != 0; }
   // The value of `field` interpolated at fringe cell c from its donors.
   [[nodiscard]] double interpolate(std::span<const double> field, int c) const;
+  // The vector (u[0], u[1], u[2]) interpolated at fringe cell c, each donor's value turned into
+  // c's axes.
+  using Vector = std::array<std::span<const double>, 3>;
+  [[nodiscard]] Eigen::Vector3d interpolate(const Vector& u, int c) const;
   // Per fixed cell (fixed_cells() order): the interpolation for a fringe cell, `hole` (or the
   // field's own value if `hole` is NaN) for a hole cell.
   void fixed_values(std::span<const double> field, double hole, std::vector<double>& out) const;
+  // The same for component i of a vector field (a hole cell keeps its own value).
+  void fixed_values(const Vector& u, std::size_t i, std::vector<double>& out) const;
   // Sets the fringe cells of `field` to their interpolations (the donors are active: one pass),
   // and the hole cells to `hole` unless it is NaN.
   void apply(std::span<double> field, double hole) const;
+  // Sets the fringe cells of a vector field to their interpolations (hole cells unchanged).
+  void apply(const std::array<std::span<double>, 3>& u) const;
   [[nodiscard]] int components() const { return static_cast<int>(cell_offset_.size()); }
   [[nodiscard]] int component_of(int c) const;
   [[nodiscard]] double active_volume() const { return active_volume_; }
 
  private:
+  // Validates `stencils` and builds the lists from them (all or nothing).
+  void assign(mesher::CompositeStencils stencils);
+
   const Mesh& mesh_;
   mesher::CompositeStencils stencils_;
   std::vector<int> cell_offset_;
   std::vector<int> fixed_, fringe_, active_cells_;
   std::vector<char> live_;
   double active_volume_ = 0;
+  std::vector<Eigen::Matrix3d> orientation_, rotation_;
+  bool turned_ = false;
+  mutable std::vector<Eigen::Vector3d> scratch_;  // apply()'s interpolated vectors
 };
 
 // Net volume flux (m^3/s) out of each component's active cells through the faces they share

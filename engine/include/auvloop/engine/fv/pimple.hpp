@@ -122,6 +122,14 @@ class Pimple {
   // turbulence model does not ride on the coupling yet (std::logic_error).
   void set_overset(const Overset* overset);
   [[nodiscard]] const Overset* overset() const { return overset_; }
+  // Overset re-assembly: when the grids move against each other, the driver re-assembles at the
+  // new time level's placements and passes the result to the attached Overset (Overset::update,
+  // with the components' orientations) before step(); the step's first stage then carries the
+  // fields over (overset_transition.cpp states it): cells that came out of a hole take the mean
+  // of their neighbours in every time level, faces that came alive a consistent flux, cells
+  // that became active a predictor force. A restart re-assembles at the checkpoint's placements
+  // before initialise().
+
   // Rigid motion of the grids (motion.hpp): the motion of each grid's axes at the new time
   // level, one per component of an overset mesh (one otherwise), set before every step (a
   // prescribed motion, or the 6-DOF solution) and before initialise() for the initial flux.
@@ -211,6 +219,7 @@ class Pimple {
     // flux, the shifted fixed values.
     Matrix p_free, p_shifted;
     std::vector<double> p_shift, phi_shift, fixed_shift;
+    std::vector<double> fill;  // overset re-assembly: the filled cells' values of one sweep
   };
   Work work_;
   // The fields at the start of the step, restored when it diverges.
@@ -262,6 +271,12 @@ class Pimple {
   bool shift_current_ = false;
   // Overset: zero flux on the faces that carry none (Overset::live).
   void mask_faces(std::vector<double>& flux) const;
+  // Overset re-assembly (overset_transition.cpp): the statuses the fields are of, the stage that
+  // follows a new assembly (false when nothing changed), and what depends on the statuses.
+  std::vector<mesher::CellStatus> status_;
+  void snapshot_status();
+  bool follow_assembly();
+  void find_open_components();
   // Rigid motion (motion.cpp): at the start of initialise() and of every step, the grid flux,
   // the wall velocities, the far field's faces and whether any face fixes p.
   void apply_motion();
