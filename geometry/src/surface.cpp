@@ -206,21 +206,26 @@ void close_hull_end(TriangleBuilder& tb, const std::vector<int>& rim, double x, 
 
 }  // namespace
 
-SurfaceMesh cylinder_surface(double cx, double cy, double radius, double z0, double z1,
-                             int segments) {
-  if (!(radius > 0) || !(z1 > z0) || segments < 3)
+SurfaceMesh prism_surface(std::span<const Eigen::Vector2d> polygon, const Eigen::Vector2d& centre,
+                          double z0, double z1, const std::string& name) {
+  double area = 0;
+  for (std::size_t k = 0; k < polygon.size(); ++k) {
+    const auto& a = polygon[k];
+    const auto& b = polygon[(k + 1) % polygon.size()];
+    area += 0.5 * (a.x() * b.y() - b.x() * a.y());
+  }
+  if (polygon.size() < 3 || !(z1 > z0) || !(area > 0))
     throw GeometryError(fmt::format(
-        "cylinder_surface: need radius > 0, z1 > z0 and at least 3 segments, got {}, {} .. {}, {}",
-        radius, z0, z1, segments));
+        "prism_surface {}: need at least 3 points counter-clockwise and z1 > z0, got {} points "
+        "(area {:.3g}), z {} .. {}",
+        name, polygon.size(), area, z0, z1));
   TriangleBuilder b;
   std::vector<int> lo, hi;
-  for (int k = 0; k < segments; ++k) {
-    const double a = 2 * kPi * k / segments;
-    const double x = cx + radius * std::cos(a), y = cy + radius * std::sin(a);
-    lo.push_back(b.add({x, y, z0}));
-    hi.push_back(b.add({x, y, z1}));
+  for (const auto& q : polygon) {
+    lo.push_back(b.add({q.x(), q.y(), z0}));
+    hi.push_back(b.add({q.x(), q.y(), z1}));
   }
-  const int c0 = b.add({cx, cy, z0}), c1 = b.add({cx, cy, z1});
+  const int c0 = b.add({centre.x(), centre.y(), z0}), c1 = b.add({centre.x(), centre.y(), z1});
   for (std::size_t k = 0; k < lo.size(); ++k) {
     const std::size_t n = (k + 1) % lo.size();
     b.triangle(lo[k], lo[n], hi[n]);  // counter-clockwise seen from outside: outward normals
@@ -228,7 +233,21 @@ SurfaceMesh cylinder_surface(double cx, double cy, double radius, double z0, dou
     b.triangle(c0, lo[n], lo[k]);
     b.triangle(c1, hi[k], hi[n]);
   }
-  return b.mesh("cylinder");
+  return b.mesh(name);
+}
+
+SurfaceMesh cylinder_surface(double cx, double cy, double radius, double z0, double z1,
+                             int segments) {
+  if (!(radius > 0) || !(z1 > z0) || segments < 3)
+    throw GeometryError(fmt::format(
+        "cylinder_surface: need radius > 0, z1 > z0 and at least 3 segments, got {}, {} .. {}, {}",
+        radius, z0, z1, segments));
+  std::vector<Eigen::Vector2d> circle;
+  for (int k = 0; k < segments; ++k) {
+    const double a = 2 * kPi * k / segments;
+    circle.emplace_back(cx + radius * std::cos(a), cy + radius * std::sin(a));
+  }
+  return prism_surface(circle, {cx, cy}, z0, z1, "cylinder");
 }
 
 SurfaceMesh hull_surface(const MyringProfile& profile, double cb_station, SurfaceResolution res) {

@@ -74,20 +74,6 @@ Grid background(const CylinderOversetSpec& s) {
   g.name = "background";
   return g;
 }
-// Nodes from -half to half through the uniform core [lo, hi] (cells of about h), growing by at
-// most `growth` from the core's ends outwards.
-std::vector<double> cored_nodes(double half, double lo, double hi, double h, double growth) {
-  const int n = std::max(1, static_cast<int>(std::lround((hi - lo) / h)));
-  const auto core = graded_nodes(lo, hi, n);
-  const double first = (hi - lo) / n;
-  const auto below = grown_nodes(0, lo + half, first, growth);  // distances below the core
-  std::vector<double> x;
-  for (auto it = below.rbegin(); it != below.rend(); ++it) x.push_back(lo - *it);
-  x.insert(x.end(), core.begin() + 1, core.end());
-  const auto above = grown_nodes(hi, half, first, growth);
-  x.insert(x.end(), above.begin() + 1, above.end());
-  return x;
-}
 }  // namespace
 
 CylinderOverset unconfined_cylinder_overset(const UnconfinedCylinderSpec& u) {

@@ -10,11 +10,14 @@
 
 #include "auvloop/mesher/cell_assembly.hpp"
 #include "auvloop/mesher/generators.hpp"
+#include "section_loop.hpp"
 
 namespace auvloop::mesher {
 
 namespace {
-using Vec2 = Eigen::Vector2d;  // (chord, normal) coordinates of a unit-chord section
+using detail::section_loop;
+using detail::SectionLoop;
+using detail::Vec2;
 
 void check(bool ok, const std::string& fin, const char* setting, const std::string& why) {
   if (!ok) throw std::invalid_argument(fmt::format("fin grid {}: {} {}", fin, setting, why));
@@ -41,74 +44,6 @@ void check_spec(const geometry::FinGeometry& fin, const FinGridSpec& s) {
         fmt::format("({:.4g} m) must be smaller than extent, cap_height, root_depth and the span "
                     "({:.4g} m)",
                     s.first_cell, limit));
-}
-
-// The section loop for unit chord, leading edge first, along the upper side to the trailing
-// edge and back along the lower side. Each entry is one outward grid line: its wall point
-// (chord fraction, side; `wall` is the entry that owns the point) and its direction in the
-// section plane. A sharp trailing edge emits a fan of lines from one wall point, turning from the
-// upper to the lower surface normal: the cells there are prisms on the trailing-edge line, and
-// the wall cells beside it stay orthogonal (a single bisector line would meet the wall at 82 deg
-// for NACA 0012). A blunt trailing edge is two points joined by the base.
-struct SectionLoop {
-  std::vector<double> x;
-  std::vector<int> side;
-  std::vector<int> wall;
-  std::vector<Vec2> dir;
-  int m = 0;    // chordwise cells per side
-  int fan = 0;  // cells in the trailing-edge fan (sharp edges)
-  [[nodiscard]] int size() const { return static_cast<int>(x.size()); }
-  [[nodiscard]] int upper(int k) const { return k; }  // entry of chord node k, upper side
-  [[nodiscard]] int lower(int k) const {
-    if (k == 0) return 0;
-    if (fan == 0) return (size() - k) % size();
-    return k == m ? m : 2 * m + fan - k;
-  }
-};
-
-Vec2 outward(const Vec2& a, const Vec2& b) {
-  const Vec2 t = (b - a).normalized();
-  return {-t.y(), t.x()};  // clockwise loop: outward is the left-hand normal
-}
-
-SectionLoop section_loop(const geometry::NacaSection& sec, int m, int fan) {
-  SectionLoop loop;
-  loop.m = m;
-  loop.fan = sec.sharp_trailing_edge ? fan : 0;
-  const auto add = [&](double x, int side, int wall) {
-    loop.x.push_back(x);
-    loop.side.push_back(side);
-    loop.wall.push_back(wall < 0 ? loop.size() - 1 : wall);
-  };
-  std::vector<double> xs;
-  for (int k = 0; k <= m; ++k) xs.push_back(0.5 * (1 - std::cos(std::numbers::pi * k / m)));
-  for (int k = 0; k <= m; ++k) add(xs[static_cast<std::size_t>(k)], 1, -1);
-  for (int t = 1; t <= loop.fan; ++t) add(1.0, 1, m);  // the fan shares the trailing-edge point
-  for (int k = loop.fan > 0 ? m - 1 : m; k >= 1; --k) add(xs[static_cast<std::size_t>(k)], -1, -1);
-  // Directions: wall normals at each point (the average of its two segments' normals), and the
-  // fan's directions evenly spaced in angle between its two segments' normals.
-  const int n = loop.size();
-  const auto q = [&](int p) {
-    const auto pu = static_cast<std::size_t>((p + n) % n);
-    return sec.surface(loop.x[pu], loop.side[pu]);
-  };
-  const auto wall_of = [&](int p) { return loop.wall[static_cast<std::size_t>((p + n) % n)]; };
-  loop.dir.resize(static_cast<std::size_t>(n));
-  for (int p = 0; p < n; ++p) {
-    int prev = p - 1, next = p + 1;  // neighbouring distinct wall points
-    while (wall_of(prev) == wall_of(p)) --prev;
-    while (wall_of(next) == wall_of(p)) ++next;
-    const Vec2 before = outward(q(prev), q(p)), after = outward(q(p), q(next));
-    auto& d = loop.dir[static_cast<std::size_t>(p)];
-    if (loop.fan == 0 || wall_of(p) != m) {
-      d = (before + after).normalized();
-      continue;
-    }
-    const double t = static_cast<double>(p - m) / loop.fan;
-    const double a = std::atan2(before.y(), before.x()), b = std::atan2(after.y(), after.x());
-    d = Vec2(std::cos(a + t * (b - a)), std::sin(a + t * (b - a)));
-  }
-  return loop;
 }
 
 // Distances from one wall, `first` growing by `growth` until the cells reach `uniform`, then

@@ -150,13 +150,14 @@ void Pimple::apply_motion() {
       const auto& m = motion_[static_cast<std::size_t>(component_of_cell(mesh_.owner(f)))];
       const Eigen::Vector3d relative = m.stream - m.at(mesh_.face_centre(f));
       const bool inflow = relative.dot(mesh_.area(f)) <= 0;
+      const double fu = inflow ? 1.0 : 0.0;
       for (std::size_t c = 0; c < 3; ++c) {
         auto& bc = U.c[c].bcs[ps];
         bc.value[is] = active_[c] ? m.stream[static_cast<Eigen::Index>(c)] : 0.0;
-        bc.fraction[is] = inflow ? 1.0 : 0.0;
+        bc.fraction[is] = fu;
       }
       p.bcs[ps].value[is] = 0.0;
-      p.bcs[ps].fraction[is] = inflow ? 0.0 : 1.0;
+      p.bcs[ps].fraction[is] = 1.0 - fu;
     }
   }
   if (overset_ != nullptr)  // 5.

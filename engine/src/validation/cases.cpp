@@ -447,6 +447,57 @@ Result run_galilean_cylinder(bool quick) {
   }
   return res;
 }
+// pitching-foil: the NACA 0012 at Re = 1000 pitching by 5 degrees about its quarter chord at a
+// reduced frequency k = omega c / 2 U = 1, its O-grid turning over the background against the
+// single grid turning as a whole. Full: the default grids (48 cells per side, 32 out to one
+// chord), 200 steps a period, three periods; the cL and cM histories of the last period agree
+// within 2 % of the single grid's amplitude (the bound). Quick: the same grids, 100 steps
+// a period, half a period compared from the end of the stream's ramp. Not passing yet
+// (docs/overset-flow.md, "Pitching foil"): the far field's switching faces and the moving
+// fringe put step-to-step pulses into the forces.
+Result run_pitching_foil(bool quick) {
+  Result res{"pitching-foil", {}, {}};
+  mesher::FoilOversetSpec g;
+  const double amplitude = 5 * std::numbers::pi / 180, omega = 2.0;
+  const double period = 2 * std::numbers::pi / omega;
+  int per_period = 200;
+  double end = 3 * period, from = 2 * period;
+  if (quick) {
+    per_period = 100;
+    end = 1.0 + 0.5 * period;  // the stream's ramp (1 s), then half a period
+    from = 1.0;
+  }
+  const double dt = period / per_period;
+  const auto single = pitching_foil(g, false, amplitude, omega, dt, end);
+  const auto overset = pitching_foil(g, true, amplitude, omega, dt, end);
+  for (const auto* r : {&single, &overset})
+    res.notes.push_back(fmt::format(
+        "{}: {} cells, {} steps of {:.4g} s, max Courant {:.2f}, continuity {:.2g}{}; {:.1f} s",
+        r == &single ? "single grid turning as a whole" : "O-grid turning over the background",
+        r->cells, r->steps, dt, r->max_courant, r->continuity_error,
+        r == &overset ? fmt::format(", {} cells out of a hole, re-assembly {:.1f} s", r->came_out,
+                                    r->assembly_seconds)
+                      : "",
+        r->seconds));
+  for (auto [name, a, b] :
+       {std::tuple{"cL", &overset.cl, &single.cl}, std::tuple{"cM", &overset.cm, &single.cm}}) {
+    double lo = 1e300, hi = -1e300, d = 0;
+    for (std::size_t i = 0; i < single.t.size() && i < overset.t.size(); ++i) {
+      if (single.t[i] < from - 1e-9) continue;
+      lo = std::min(lo, (*b)[i]);
+      hi = std::max(hi, (*b)[i]);
+      d = std::max(d, std::abs((*a)[i] - (*b)[i]));
+    }
+    const double amp = 0.5 * (hi - lo);
+    res.notes.push_back(
+        fmt::format("{} from t = {:.3g} s: single grid between {:.4f} and {:.4f} "
+                    "(amplitude {:.4f}), largest difference {:.2e}",
+                    name, from, lo, hi, amp, d));
+    res.rows.push_back(
+        bound_row(fmt::format("max |overset - single| {} / amplitude", name), d / amp, 0.02));
+  }
+  return res;
+}
 }  // namespace
 
 const std::vector<Case>& cases() {
@@ -477,6 +528,10 @@ const std::vector<Case>& cases() {
        "the unconfined cylinder at Re = 100 towed through fluid at rest against the fixed one in "
        "the stream: St, mean cD, cL amplitude",
        run_galilean_cylinder},
+      {"pitching-foil",
+       "a NACA 0012 pitching in its overset grid over a background against the single grid "
+       "turning as a whole: cL and cM histories",
+       run_pitching_foil},
       {"flat-plate-sst",
        "NASA TMR zero-pressure-gradient flat plate, SST k-omega: Cf(0.97) and CD against CFL3D",
        run_flat_plate_sst},

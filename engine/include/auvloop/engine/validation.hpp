@@ -15,6 +15,7 @@
 #include "auvloop/engine/turbulence/sst_model.hpp"
 #include "auvloop/mesher/cylinder_grid.hpp"
 #include "auvloop/mesher/flat_plate_grid.hpp"
+#include "auvloop/mesher/foil_grid.hpp"
 
 namespace auvloop::engine::validation {
 
@@ -139,6 +140,24 @@ struct UnconfinedCylinderResult {
 };
 UnconfinedCylinderResult unconfined_cylinder(const mesher::UnconfinedCylinderSpec& g, bool towed,
                                              double dt, double end_time, int measured_periods);
+
+// pitching-foil (pitching_foil.cpp): a NACA 0012 of chord c = 1 m in a stream U = 1 m/s at
+// Re = U c / nu = 1000, pitching about its quarter chord as theta(t) = amplitude cos(omega t)
+// (rad, counter-clockwise about +z: nose down for positive theta), the stream rising from rest
+// over the first second, for BDF2 steps of dt to end_time. `overset`: the foil's O-grid
+// turning over the background at rest (re-assembled every step; mesher::foil_grids(g).foil and
+// .background); else the single body-fitted grid (.single) turning as a whole. cL and cM (about
+// the pivot, counter-clockwise positive) every step, in the stream's axes.
+struct PitchingFoilResult {
+  int cells = 0, steps = 0;
+  int came_out = 0;  // overset: cells that left a hole over the run
+  double max_courant = 0, continuity_error = 0, seconds = 0;
+  double assembly_seconds = 0;  // overset: the re-assemblies' share of `seconds`
+  std::vector<double> t, theta, cl, cm;
+  std::vector<int> changed;  // overset: cells whose status changed, per step
+};
+PitchingFoilResult pitching_foil(const mesher::FoilOversetSpec& g, bool overset, double amplitude,
+                                 double omega, double dt, double end_time);
 
 // Schaefer-Turek 2D-2 (Re = 100, periodic shedding) from rest to end_time with BDF2 at fixed dt;
 // St, cD max and cL max over the last `measured_periods` periods of cL (upward crossings of its

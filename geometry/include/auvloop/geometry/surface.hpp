@@ -39,6 +39,12 @@ SurfaceMesh hull_surface(const MyringProfile& profile, double cb_station, Surfac
 // Throws GeometryError on a non-positive radius or length or too few segments.
 SurfaceMesh cylinder_surface(double cx, double cy, double radius, double z0, double z1,
                              int segments);
+// A closed prism along z: the polygon (x, y; counter-clockwise, star-shaped about `centre`,
+// whose fan closes the ends) from z0 to z1 > z0: the solid of a 2D body (a foil section in a
+// one-cell-thick grid). Throws GeometryError on fewer than 3 points, z1 <= z0 or a clockwise
+// polygon.
+SurfaceMesh prism_surface(std::span<const Eigen::Vector2d> polygon, const Eigen::Vector2d& centre,
+                          double z0, double z1, const std::string& name);
 SurfaceMesh fin_surface(const FinGeometry& fin, double deflection, SurfaceResolution res);
 
 // Hull followed by every fin (file order), each a closed surface; fins deflected by

@@ -37,6 +37,10 @@ std::vector<double> banded_nodes(double length, double first, double growth, dou
 // first is not in (0, b - a).
 std::vector<double> stretched_nodes(double a, double b, double first, int n);
 
+// Nodes from -half to half through the uniform core [lo, hi] (cells of about h), growing by at
+// most `growth` from the core's ends outwards (a background box round a body).
+std::vector<double> cored_nodes(double half, double lo, double hi, double h, double growth);
+
 // The background box of the overset system (issue 6): the paper's extents by default (inlet 3 L
 // ahead of the bow, outlet 5 L behind the stern, 1.4 L from the axis to each side), uniform
 // spacing `spacing` in a near-body region that also covers the propeller disk and `wake` behind
