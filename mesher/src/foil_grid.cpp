@@ -166,11 +166,14 @@ FoilGrids foil_grids(const FoilOversetSpec& s) {
             std::max({s.core_upstream, s.core_downstream, s.core_side}) < 0.5 * s.extent,
         "core", "must contain the O-grid's circle and lie inside the background");
   check(s.thickness > 0, "thickness", "must be positive");
+  check(s.spacing >= 0 && s.spacing < s.outer_radius, "spacing",
+        "must be 0 (the O-grid's outer cell size) or positive and below outer_radius");
   FoilGrids out;
   auto l = lines(s);
   out.foil = build(l, s, "foil", "outer", PatchType::overset);  // 1.
-  const double h =
-      2 * std::numbers::pi * s.outer_radius * s.chord / static_cast<double>(l.points.size());
+  const double h = s.spacing > 0 ? s.spacing * s.chord
+                                 : 2 * std::numbers::pi * s.outer_radius * s.chord /
+                                       static_cast<double>(l.points.size());
   add_far_rings(l, s);  // 2.
   out.single = build(l, s, "single", "far", PatchType::inlet);
   const double c = s.chord, half = 0.5 * s.extent * c;  // 3.

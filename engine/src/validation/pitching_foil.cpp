@@ -11,9 +11,10 @@
 //      body at rest, the stream (U, 0, 0) resolved in the foil's axes);
 //   2. overset: place the foil grid, re-assemble (fv::MovingOverset), the background at rest in
 //      the stream; single: the one grid's motion is the foil's;
-//   3. BDF2 steps from rest, the far field's stream rising smoothly to U over the time the stream
-//      takes to pass a chord (an impulsive start puts a singular velocity at the sharp trailing
-//      edge); far field on the outer boundary, the foil a wall moving with its grid;
+//   3. BDF2 steps from the uniform stream (in each grid's axes) at t = 0 (a stream rising from
+//      rest instead needs a pressure gradient across the domain that a far field fixing p on its
+//      outflow half cannot carry: the far field is then left disturbed for many flow-through
+//      times); far field on the outer boundary, the foil a wall moving with its grid;
 //   4. the foil's force and moment (fv::patch_force, in the foil's axes, moment about the pivot)
 //      turned into the stream's axes: cL = F_y / q c s, cM = M_z / q c^2 s, q = U^2 / 2, s the
 //      span (the grids' thickness).
@@ -65,20 +66,25 @@ PitchingFoilResult pitching_foil(const mesher::FoilOversetSpec& g, bool overset,
     flow.wall("foil");
   }
   fv::FrameMotion body;  // 1.
-  const double ramp = 1.0 * c / U;
+  body.stream = {U, 0, 0};
   const Eigen::Vector3d pivot = Eigen::Vector3d::Zero();
   const auto axes = [&](double t) {
     return Eigen::Isometry3d(
         Eigen::AngleAxisd(amplitude * std::cos(omega * t), Eigen::Vector3d::UnitZ()));
   };
   const auto motion = [&](double t) {
-    const double x = std::min(1.0, t / ramp);  // the stream from rest, smoothly
-    body.stream = {U * x * x * (3 - 2 * x), 0, 0};
     const Eigen::Vector3d rate(0, 0, -amplitude * omega * std::sin(omega * t));
     const auto foil = fv::placed_motion(body, axes(t), rate, pivot);
     return overset ? std::vector<fv::FrameMotion>{foil, body} : std::vector<fv::FrameMotion>{foil};
   };
-  flow.set_motion(motion(0));
+  const auto initial = motion(0);  // 3.
+  for (int cell = 0; cell < mesh.cells(); ++cell) {
+    const auto& m =
+        initial[overset ? static_cast<std::size_t>(sys->overset().component_of(cell)) : 0];
+    for (std::size_t i = 0; i < 2; ++i)
+      flow.U.c[i].cells[static_cast<std::size_t>(cell)] = m.stream[static_cast<Eigen::Index>(i)];
+  }
+  flow.set_motion(initial);
   flow.initialise();
   PitchingFoilResult r;
   r.cells = mesh.cells();

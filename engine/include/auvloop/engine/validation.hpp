@@ -143,8 +143,8 @@ UnconfinedCylinderResult unconfined_cylinder(const mesher::UnconfinedCylinderSpe
 
 // pitching-foil (pitching_foil.cpp): a NACA 0012 of chord c = 1 m in a stream U = 1 m/s at
 // Re = U c / nu = 1000, pitching about its quarter chord as theta(t) = amplitude cos(omega t)
-// (rad, counter-clockwise about +z: nose down for positive theta), the stream rising from rest
-// over the first second, for BDF2 steps of dt to end_time. `overset`: the foil's O-grid
+// (rad, counter-clockwise about +z: nose down for positive theta) from the uniform stream at
+// t = 0, for BDF2 steps of dt to end_time. `overset`: the foil's O-grid
 // turning over the background at rest (re-assembled every step; mesher::foil_grids(g).foil and
 // .background); else the single body-fitted grid (.single) turning as a whole. cL and cM (about
 // the pivot, counter-clockwise positive) every step, in the stream's axes.

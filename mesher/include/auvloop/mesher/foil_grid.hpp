@@ -11,9 +11,9 @@
 //      line's index (so the lines the cosine spacing crowds at the edges spread out);
 //   2. the single grid: the O-grid's lines continued radially from the circle to far_radius,
 //      their cells growing by `growth` from the O-grid's last;
-//   3. the background: a square `extent` chords across centred on the pivot, uniform cells of the
-//      circle's tangential size in the core [-core_upstream, core_downstream] x [-core_side,
-//      core_side] chords, growing by `growth` to the sides;
+//   3. the background: a square `extent` chords across centred on the pivot, uniform cells of
+//      `spacing` (or the circle's tangential size) in the core [-core_upstream, core_downstream] x
+//      [-core_side, core_side] chords, growing by `growth` to the sides;
 //   4. the solid: the section as a prism through the grids' thickness and beyond.
 // Frame: the pivot at the origin, the chord along +x (leading edge at -pivot chord), z across.
 // Patches: O-grid "foil" (wall), "outer" (overset); single grid "foil", "far"; background
@@ -38,6 +38,7 @@ struct FoilOversetSpec {
   double far_radius = 20.0;       // in chords, the single grid's far field
   double growth = 1.1;            // beyond the circle (single grid) and the core (background)
   double extent = 40.0;           // in chords, the background's side
+  double spacing = 0;  // in chords, the background's core cells (0: the circle's tangential size)
   double core_upstream = 1.2, core_downstream = 2.5, core_side = 1.2;  // in chords
   double thickness = 0.1;                                              // in chords
 };
