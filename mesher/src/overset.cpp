@@ -476,6 +476,37 @@ struct OversetAssembler::Impl {
   // Donors for every fringe cell. With a previous assembly, a stencil is kept when its receiver
   // was not re-examined (`redo` false), its donor grid did not move and its cells are still
   // active; otherwise the search starts from the previous donor cell.
+  // Assembly::warnings: whether a body's grid cuts or covers anything at all, and per grid that
+  // a solid cuts, whether any of its holes is a covered cell.
+  void warn(Assembly& a) const {
+    for (const auto& solid : solids) {
+      int holes = 0;
+      for (std::size_t g = 0; g < grids.size(); ++g)
+        if (static_cast<int>(g) != solid.grid) holes += a.grids[g].count(CellStatus::hole);
+      if (holes == 0)
+        a.warnings.push_back(fmt::format(
+            "overset grid {}: no cell of another grid lies inside its body or is covered by it: "
+            "the other grids' flow passes through the body (their cells are too coarse to see it)",
+            solid.grid));
+    }
+    for (std::size_t g = 0; g < grids.size(); ++g) {
+      const auto& holes = wall_hole[g];
+      const auto& st = a.grids[g].status;
+      int cut = 0, covered = 0;
+      for (std::size_t c = 0; c < st.size(); ++c) {
+        cut += holes[c] != 0;
+        covered += st[c] == CellStatus::hole && holes[c] == 0;
+      }
+      if (cut == 0 || covered > 0) continue;
+      a.warnings.push_back(fmt::format(
+          "overset grid {}: a solid cuts {} of its cells but no other grid covers any: it resolves "
+          "the body on its own cells; a cell is covered only {} of its sizes inside the covering "
+          "grid's active region, so refine grid {} near the body or let the body's grid reach "
+          "further",
+          g, cut, settings.overlap_cells, g));
+    }
+  }
+
   void connect(Assembly& a, const Assembly* previous,
                const std::vector<std::vector<char>>* redo) const {
     for (auto& ga : a.grids)  // an orphan is a fringe cell still looking for donors
@@ -959,6 +990,7 @@ Assembly OversetAssembler::assemble() {
   }
   m.run(a, all);
   m.connect(a, nullptr, nullptr);
+  m.warn(a);
   a.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return a;
 }
@@ -1069,6 +1101,7 @@ Assembly OversetAssembler::update(const Assembly& previous,
   }
   m.run(a, cells);
   m.connect(a, &previous, &redo);
+  m.warn(a);
   a.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return a;
 }

@@ -85,7 +85,34 @@ TEST(FoilGrids, TheOGridAssemblesOverTheBackgroundAtEveryPitchAngle) {
     const int inside = assembler.locate(1, {0.1, 0.0, 0.05});
     ASSERT_GE(inside, 0);
     EXPECT_EQ(a.grids[1].status[static_cast<std::size_t>(inside)], CellStatus::hole) << deg;
+    EXPECT_TRUE(a.warnings.empty()) << deg << ": " << a.warnings.front();
   }
+}
+
+// A background too coarse for the cover rule is legal but not an overset system: the O-grid
+// covers none of its cells, only those inside the section are holes. The assembly says so.
+TEST(FoilGrids, ABackgroundTheOGridCannotCoverIsNamed) {
+  auto s = coarse();
+  // 0.16 chords: six background centres fall inside the section, but the cover rule needs 3.5
+  // of these sizes inside the O-grid's active region (less than one chord); at 0.14 the O-grid
+  // covers background cells.
+  s.spacing = 0.16;
+  auto g = foil_grids(s);
+  OversetAssembler assembler({{&g.foil, 1, &g.solid}, {&g.background, 0, nullptr}});
+  const auto a = assembler.assemble();
+  EXPECT_GT(a.grids[1].count(CellStatus::hole), 0);  // the cells inside the section
+  ASSERT_EQ(a.warnings.size(), 1u);
+  EXPECT_NE(a.warnings[0].find("overset grid 1"), std::string::npos) << a.warnings[0];
+  EXPECT_NE(a.warnings[0].find("no other grid covers"), std::string::npos) << a.warnings[0];
+  // At 0.2 chords no background centre falls inside the section at all: the body is invisible.
+  s.spacing = 0.2;
+  auto h = foil_grids(s);
+  OversetAssembler blind({{&h.foil, 1, &h.solid}, {&h.background, 0, nullptr}});
+  const auto b = blind.assemble();
+  EXPECT_EQ(b.grids[1].count(CellStatus::hole), 0);
+  ASSERT_EQ(b.warnings.size(), 1u);
+  EXPECT_NE(b.warnings[0].find("overset grid 0"), std::string::npos) << b.warnings[0];
+  EXPECT_NE(b.warnings[0].find("passes through the body"), std::string::npos) << b.warnings[0];
 }
 
 TEST(FoilGrids, BadSettingsAreNamed) {

@@ -3,21 +3,25 @@
 // new assembly to the Overset, the first stage of the next step carries the fields over to the
 // new statuses. Nothing happens when no status changed. With `was` the statuses of the last
 // step and `is` the new ones:
-//   1. cells that came out of a hole (was hole, is fringe or active) hold no flow: U, both old
-//      levels of U and p become the mean of their face neighbours that hold one (not a hole
+//   1. cells that came out of a hole (was hole, is fringe or active) hold no flow: U, the old
+//      level of U that the step keeps (U_old_[0]: the BDF2 level n-1 once the step shifts the
+//      levels) and p become the mean of their face neighbours that hold one (not a hole
 //      before, or filled in an earlier sweep), sweep by sweep outward from the flow, as
 //      OpenFOAM's overset does for such cells; a cell no sweep reaches keeps its hole values
 //      (U the grid velocity);
-//   2. the fringe cells take their interpolations of U and p (the donors may have changed);
+//   2. of those, the fringe cells take their donors' interpolations of U, its old level and p
+//      (the donors' old level at the new placement: displaced by one step's motion, closer than
+//      a neighbour mean); every other fringe cell keeps the values of the last step, the flow
+//      at its place at time level n, which the step keeps as its old level;
 //   3. faces that came alive (were masked, are live) take the face flux of U, and for the
 //      Rhie-Chow time correction the old flux of the old level, so that their old flux and old
-//      velocity agree;
+//      velocity agree; faces that died carry no flux from now on;
 //   4. cells that became active start their predictor force from grad(p) (a fixed row left
 //      none), as every cell does on the first step;
 //   5. the open components (overset_mass.cpp) and the reference cell from the new statuses.
+// Returns the number of cells whose status changed and of those that came out of a hole.
 // The old time levels of BDF2 in the cells that keep their status are untouched: every
 // component's cells are at rest in its own axes, so their history stays the same cell's.
-#include <limits>
 
 #include "auvloop/engine/fv/pimple.hpp"
 #include "parallel.hpp"
@@ -54,36 +58,43 @@ void Pimple::find_open_components() {
     fringe[static_cast<std::size_t>(overset_->component_of(c))] = 1;
   for (std::size_t k = 0; k < open.size(); ++k)
     if (open[k] != 0 && fringe[k] != 0) open_components_.push_back(static_cast<int>(k));
-  if (overset_->active_cells().empty()) {
+}
+
+void Pimple::find_reference_cell() {
+  if (overset_ == nullptr || overset_->active_cells().empty()) {
     reference_cell_ = 0;
   } else if (!overset_->active(reference_cell_)) {
     reference_cell_ = overset_->active_cells().front();
   }
 }
 
-bool Pimple::follow_assembly() {
-  if (overset_ == nullptr || status_.empty()) return false;
+std::pair<int, int> Pimple::follow_assembly() {
+  if (overset_ == nullptr || status_.empty()) return {0, 0};
   const auto n = static_cast<std::size_t>(mesh_.cells());
-  bool changed = false;
-  for (std::size_t c = 0; c < n && !changed; ++c)
-    changed = status_[c] != overset_->status(static_cast<int>(c));
-  if (!changed) return false;
+  int changed = 0;
+  for (std::size_t c = 0; c < n; ++c)
+    changed += status_[c] != overset_->status(static_cast<int>(c));
+  if (changed == 0) return {0, 0};
   // 1. fill the cells that came out of a hole, sweep by sweep
-  std::vector<int> pending;
-  std::vector<char> holds(n, 0);
+  auto& pending = work_.pending;
+  auto& holds = work_.holds;
+  pending.clear();
+  holds.assign(n, 0);
   for (std::size_t c = 0; c < n; ++c) {
     const bool was_hole = status_[c] == CellStatus::hole;
     holds[c] = was_hole ? 0 : 1;
     if (was_hole && overset_->status(static_cast<int>(c)) != CellStatus::hole)
       pending.push_back(static_cast<int>(c));
   }
-  std::vector<std::vector<double>*> levels;
-  for (std::size_t i = 0; i < 3; ++i)
-    levels.insert(levels.end(), {&U.c[i].cells, &U_old_[0][i], &U_old_[1][i]});
-  levels.push_back(&p.cells);
+  const auto uncovered = static_cast<int>(pending.size());
+  // U_old_[1] is not among them: the step's shift of the levels drops it.
+  const std::array<std::vector<double>*, 7> levels{&U.c[0].cells, &U.c[1].cells, &U.c[2].cells,
+                                                   &U_old_[0][0], &U_old_[0][1], &U_old_[0][2],
+                                                   &p.cells};
   const int internal = mesh_.internal_faces();
-  std::vector<int> filled, rest;
-  std::vector<double> mean(levels.size());
+  auto& filled = work_.filled;
+  auto& rest = work_.rest;
+  std::array<double, levels.size()> mean{};
   for (int sweep = 0; sweep < fill_sweeps && !pending.empty(); ++sweep) {
     filled.clear();
     rest.clear();
@@ -116,13 +127,27 @@ bool Pimple::follow_assembly() {
     work_.fill.clear();
     pending.swap(rest);
   }
-  // 2. the fringe cells from their (new) donors
-  overset_->apply(std::array<std::span<double>, 3>{U.c[0].cells, U.c[1].cells, U.c[2].cells});
-  overset_->apply(p.cells, std::numeric_limits<double>::quiet_NaN());
+  // 2. the fringe cells out of a hole from their donors; the other fringe cells keep their
+  //    values, which are the interpolations at the last step's placement: the flow at the
+  //    cell at time level n, which the step keeps as its old level (re-interpolating them at
+  //    the new placement would turn the old level into the donors' flow displaced by a step)
+  for (std::size_t c = 0; c < n; ++c) {
+    const int ci = static_cast<int>(c);
+    if (status_[c] != CellStatus::hole || overset_->status(ci) != CellStatus::fringe) continue;
+    const Eigen::Vector3d u = overset_->interpolate({U.c[0].cells, U.c[1].cells, U.c[2].cells}, ci);
+    const Eigen::Vector3d u_old =
+        overset_->interpolate({U_old_[0][0], U_old_[0][1], U_old_[0][2]}, ci);
+    for (std::size_t i = 0; i < 3; ++i) {
+      U.c[i].cells[c] = u[static_cast<Eigen::Index>(i)];
+      U_old_[0][i][c] = u_old[static_cast<Eigen::Index>(i)];
+    }
+    p.cells[c] = overset_->interpolate(p.cells, ci);
+  }
   U.update_boundary(mesh_);
   p.update_boundary(mesh_);
   // 3. the faces that came alive: the flux of U, the old flux of the old level
-  std::vector<int> born;
+  auto& born = work_.born;
+  born.clear();
   for (int f = 0; f < mesh_.faces(); ++f) {
     const bool was = status_[static_cast<std::size_t>(mesh_.owner(f))] == CellStatus::active ||
                      (f < internal &&
@@ -143,6 +168,7 @@ bool Pimple::follow_assembly() {
       phi_old_[0][fs] = f < internal ? flux[fs] : phi[fs];
     }
   }
+  mask_faces(phi);
   // 4. the predictor force of the cells that became active
   if (!predictor_force_[0].empty() || !predictor_force_[1].empty() ||
       !predictor_force_[2].empty()) {
@@ -157,8 +183,9 @@ bool Pimple::follow_assembly() {
     }
   }
   find_open_components();  // 5.
+  find_reference_cell();
   snapshot_status();
-  return true;
+  return {changed, uncovered};
 }
 
 }  // namespace auvloop::engine::fv

@@ -110,9 +110,8 @@ void Pimple::apply_slip() {
 void Pimple::initialise() {
   if (overset_ != nullptr && turbulence_ != nullptr)
     throw std::logic_error("Pimple: a turbulence model on an overset mesh is not supported yet");
-  reference_cell_ = overset_ == nullptr || overset_->active_cells().empty()
-                        ? 0
-                        : overset_->active_cells().front();
+  reference_cell_ = 0;
+  find_reference_cell();
   if (overset_ != nullptr) {
     overset_->apply(std::array<std::span<double>, 3>{U.c[0].cells, U.c[1].cells, U.c[2].cells});
     overset_->apply(p.cells, std::numeric_limits<double>::quiet_NaN());
@@ -165,7 +164,7 @@ StepReport Pimple::step() {
   if (!body_force.empty() && body_force.size() != static_cast<std::size_t>(mesh_.cells()))
     throw std::invalid_argument(fmt::format("Pimple: body_force has {} entries for {} cells",
                                             body_force.size(), mesh_.cells()));
-  follow_assembly();  // overset re-assembly: the fields onto the new statuses
+  const auto [status_changes, uncovered_cells] = follow_assembly();  // overset re-assembly
   // Copy assignments into kept storage: no allocation after the first step.
   good_.U = U;
   good_.p = p;
@@ -191,6 +190,8 @@ StepReport Pimple::step() {
   StepReport r;
   const double gradient_seconds = mesh_.gradient_seconds();
   r.step = steps_ + 1;
+  r.status_changes = status_changes;
+  r.uncovered_cells = uncovered_cells;
   r.dt = dt_;
   r.time = time_ + dt_;
   try {

@@ -32,6 +32,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "auvloop/geometry/surface.hpp"
@@ -67,6 +68,10 @@ struct Assembly {
   std::vector<GridAssembly> grids;      // GridSystem::grids() order
   double seconds = 0;                   // wall time of the assembly
   int cells_visited = 0;                // cells whose status was (re)computed
+  // What is legal but almost surely not meant, one sentence each: a grid that another grid's
+  // solid cuts while no grid covers any of its cells (its cells are too coarse for the cover
+  // rule, so it resolves the body on its own staircase of cells).
+  std::vector<std::string> warnings;
 };
 
 struct OversetSettings {

@@ -76,6 +76,9 @@ struct StepReport {
   // Overset meshes: the largest |net flux| (m^3/s) a component's active cells pass to its fringe
   // and hole cells (fv::interface_flux), after the step.
   double interface_flux = 0;
+  // Overset re-assembly at the start of the step (overset_transition.cpp): the cells whose
+  // status changed since the last step and, of those, the cells that came out of a hole.
+  int status_changes = 0, uncovered_cells = 0;
   int outer_iterations = 0;
   int pressure_iterations = 0;  // Krylov iterations summed over correctors (0 for CHOLMOD)
   int momentum_iterations = 0;  // sweep pairs or Krylov iterations summed over components
@@ -219,7 +222,11 @@ class Pimple {
     // flux, the shifted fixed values.
     Matrix p_free, p_shifted;
     std::vector<double> p_shift, phi_shift, fixed_shift;
-    std::vector<double> fill;  // overset re-assembly: the filled cells' values of one sweep
+    // Overset re-assembly: the filled cells' values of one sweep, the cells that hold a value,
+    // those still to fill and those filled in a sweep, the faces that came alive.
+    std::vector<double> fill;
+    std::vector<char> holds;
+    std::vector<int> pending, filled, rest, born;
   };
   Work work_;
   // The fields at the start of the step, restored when it diverges.
@@ -275,8 +282,11 @@ class Pimple {
   // follows a new assembly (false when nothing changed), and what depends on the statuses.
   std::vector<mesher::CellStatus> status_;
   void snapshot_status();
-  bool follow_assembly();
+  // The number of cells whose status changed and of those that came out of a hole (0, 0 when
+  // nothing changed).
+  std::pair<int, int> follow_assembly();
   void find_open_components();
+  void find_reference_cell();  // an active cell: the last one while it stays active
   // Rigid motion (motion.cpp): at the start of initialise() and of every step, the grid flux,
   // the wall velocities, the far field's faces and whether any face fixes p.
   void apply_motion();
