@@ -91,6 +91,7 @@ int mesh_command(const MeshOptions& o) {
   if (!o.no_overset) {
     mesher::OversetAssembler assembler(sys, in.vehicle);
     assembly = assembler.assemble(sys.fin_deflections);
+    for (const auto& w : assembly->warnings) fmt::print(stderr, "warning: {}\n", w);
     for (std::size_t g = 0; g < report.grids.size(); ++g) {
       const auto& ga = assembly->grids[g];
       report.grids[g].assembled = true;

@@ -67,6 +67,12 @@ TEST(FV_SUITE, RotatingFrameAtRest) {
 TEST(FV_SUITE, GalileanCylinder) {
   run("galilean-cylinder");
 }
+// A NACA 0012 pitching in its O-grid over a background against the same motion of one grid
+// (issue 17; quick: 100 steps, about 70 s; full: 600 steps, about 5 minutes): cL and cM histories
+// within 2 % of the amplitude.
+TEST(FV_SUITE, PitchingFoil) {
+  run("pitching-foil");
+}
 TEST(FV_SUITE, SchaeferTurek2d2Shedding) {
   run("schaefer-turek-2d2");
 }
