@@ -68,6 +68,10 @@ namespace {
 // 50 mm hull radius at the fins.
 constexpr double kWallSliver = 0.05;
 
+// The largest sum |w| of a stencil taken without trying a larger one (bounded weights: the
+// interpolation's Lebesgue constant; 1 to 3 for the bulk of the REMUS stencils).
+constexpr double kGoodStencil = 10;
+
 // How deep inside the covering grid's active region (away from its holes and outer boundary) a
 // cell of this size must lie to be covered, where the covering cell has this radius (largest
 // centre-to-point distance). `overlap_cells` of the cell's own sizes, so that its fringe, which
@@ -209,15 +213,16 @@ struct OversetAssembler::Impl {
 
   // Inside a solid other than the one grid g fits: a body-fitted grid is not cut by its own body
   // (its wall is that body's surface, and the centres of thin wall cells over a curved wall may
-  // lie inside the finer triangulation by the chord sagitta).
-  [[nodiscard]] bool in_body(const Eigen::Vector3d& x, int g) const {
+  // lie inside the finer triangulation by the chord sagitta). The grid whose solid it is, -1 if
+  // none.
+  [[nodiscard]] int in_body(const Eigen::Vector3d& x, int g) const {
     for (const auto& solid : solids) {
       if (solid.grid == g) continue;
       const Eigen::Vector3d xl =
           grids[static_cast<std::size_t>(solid.grid)].grid->placement.inverse() * x;
-      if (solid.local.contains(xl) && solid.query->inside(xl)) return true;
+      if (solid.local.contains(xl) && solid.query->inside(xl)) return solid.grid;
     }
-    return false;
+    return -1;
   }
 
   // Step 1 for the cells given: wall holes (centre inside a solid other than the grid's own).
@@ -225,7 +230,7 @@ struct OversetAssembler::Impl {
     auto& holes = wall_hole[static_cast<std::size_t>(g)];
     for (int c : cells) {
       const auto cu = static_cast<std::size_t>(c);
-      holes[cu] = in_body(body(g, c), g) ? 1 : 0;
+      holes[cu] = static_cast<char>(in_body(body(g, c), g) + 1);  // 0: not a wall hole
       st[cu] = holes[cu] ? CellStatus::hole : CellStatus::active;
     }
   }
@@ -367,6 +372,32 @@ struct OversetAssembler::Impl {
     const int stamp = ++stamps[static_cast<std::size_t>(h)];
     std::vector<int> reached{loc};
     mark[static_cast<std::size_t>(loc)] = stamp;
+    // A candidate's weights are kept when they are bounded (sum |w| <= kGoodStencil: an
+    // interpolation, or a short extrapolation); otherwise the rings grow, and the candidate with
+    // the smallest sum |w| is taken at the end. Centres that hardly span the space give weights
+    // of 1e8 that reproduce linear fields and amplify everything else.
+    std::vector<int> best;
+    std::vector<double> best_w;
+    double best_sum = std::numeric_limits<double>::infinity();
+    const auto consider = [&](const std::vector<int>& candidate) {
+      std::vector<Eigen::Vector3d> xs;
+      for (int c : candidate) xs.push_back(hd.geo.cell_centre[static_cast<std::size_t>(c)]);
+      if (!linear_weights(xs, xl, w, planar)) return false;
+      double sum = 0;
+      for (double v : w) sum += std::abs(v);
+      if (sum < best_sum) {
+        best_sum = sum;
+        best = candidate;
+        best_w = w;
+      }
+      return sum <= kGoodStencil;
+    };
+    const auto settle = [&] {
+      if (best.empty()) return false;
+      stencil = best;
+      w = best_w;
+      return true;
+    };
     stencil.clear();
     if (containing) stencil.push_back(loc);
     const int rings = containing ? 3 : settings.fallback_rings;
@@ -386,23 +417,21 @@ struct OversetAssembler::Impl {
       begin = end;
       if (!containing && ring + 1 < rings && stencil.size() < 8) continue;
       if (!containing) nearest_first(hd, xl, stencil);
-      std::vector<Eigen::Vector3d> xs;
-      for (int c : stencil) xs.push_back(hd.geo.cell_centre[static_cast<std::size_t>(c)]);
-      if (linear_weights(xs, xl, w, planar)) return true;
+      if (consider(stencil)) return true;
     }
-    if (containing) return false;
-    // Last resort, when the rings stay inside a thick hole: the nearest active cell centres.
+    if (containing) return settle();
+    // Last resort, when the rings stay inside a thick hole (or gave only poor stencils): the
+    // nearest active cell centres.
     KSearch search(*hd.tree, KPoint(xl.x(), xl.y(), xl.z()), 64);
     stencil.clear();
-    std::vector<Eigen::Vector3d> xs;
     for (const auto& hit : search) {
       const int cell = boost::get<1>(hit.first);
       if (hs[static_cast<std::size_t>(cell)] != CellStatus::active) continue;
       stencil.push_back(cell);
-      xs.push_back(hd.geo.cell_centre[static_cast<std::size_t>(cell)]);
       if (stencil.size() == 12) break;
     }
-    return linear_weights(xs, xl, w, planar);
+    consider(stencil);
+    return settle();
   }
 
   // Donor stencil of one fringe cell; false when no grid offers an active donor. First a cell of
@@ -490,20 +519,26 @@ struct OversetAssembler::Impl {
             solid.grid));
     }
     for (std::size_t g = 0; g < grids.size(); ++g) {
+      // Cut by the solid of a grid that outranks it (that grid should cover it round its body; a
+      // fin grid reaching into the hull below its root is cut by the hull's solid by design).
       const auto& holes = wall_hole[g];
       const auto& st = a.grids[g].status;
-      int cut = 0, covered = 0;
+      int cut = 0, covered = 0, by = -1;
       for (std::size_t c = 0; c < st.size(); ++c) {
-        cut += holes[c] != 0;
+        const int k = holes[c] - 1;
+        if (k >= 0 && grids[static_cast<std::size_t>(k)].priority > grids[g].priority) {
+          ++cut;
+          by = k;
+        }
         covered += st[c] == CellStatus::hole && holes[c] == 0;
       }
       if (cut == 0 || covered > 0) continue;
       a.warnings.push_back(fmt::format(
-          "overset grid {}: a solid cuts {} of its cells but no other grid covers any: it resolves "
-          "the body on its own cells; a cell is covered only {} of its sizes inside the covering "
-          "grid's active region, so refine grid {} near the body or let the body's grid reach "
-          "further",
-          g, cut, settings.overlap_cells, g));
+          "overset grid {}: the body of grid {} cuts {} of its cells but no other grid covers "
+          "any: it resolves the body on its own cells; a cell is covered only {} of its sizes "
+          "inside the covering grid's active region, so refine grid {} near the body or let the "
+          "body's grid reach further",
+          g, by, cut, settings.overlap_cells, g));
     }
   }
 
@@ -792,7 +827,8 @@ struct OversetAssembler::Impl {
   // when its donor cell still contains the centre, its cells are all still active, and no grid of
   // higher priority now offers an active cell containing the centre: the donor a full search would
   // choose is then the same cell. A fallback stencil is refitted while no grid offers an active
-  // containing cell and its first cell stays within the fallback reach.
+  // containing cell and its first cell stays within the fallback reach. Either only while the
+  // new weights stay bounded (kGoodStencil).
   bool refit(const Assembly& a, const GridAssembly& pg, int g, int c, std::vector<int>& cells,
              std::vector<double>& w) const {
     const auto cu = static_cast<std::size_t>(c);
@@ -817,7 +853,10 @@ struct OversetAssembler::Impl {
     if (outranked(a, g, c, dg, fallback)) return false;
     std::vector<Eigen::Vector3d> xs;
     for (int s : cells) xs.push_back(hd.geo.cell_centre[static_cast<std::size_t>(s)]);
-    return linear_weights(xs, xl, w, planar);
+    if (!linear_weights(xs, xl, w, planar)) return false;
+    double sum = 0;  // weights grown unbounded at the new place: search again (stencil_in)
+    for (double v : w) sum += std::abs(v);
+    return sum <= kGoodStencil;
   }
 
   // A stencil between two grids that did not move is kept as it is (weights included) when its

@@ -1,0 +1,81 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// A vehicle's overset system in the flow (vehicle_overset.hpp states the steps of a driver).
+#include "auvloop/engine/fv/vehicle_overset.hpp"
+
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "auvloop/mesher/fin_grid.hpp"
+
+namespace auvloop::engine::fv {
+
+VehicleOverset::VehicleOverset(mesher::GridSystem system, const geometry::Vehicle& vehicle,
+                               mesher::OversetSettings settings)
+    : system_(std::make_unique<mesher::GridSystem>(std::move(system))) {
+  merged_at_ = system_->fin_deflections;
+  assembler_ = std::make_unique<mesher::OversetAssembler>(*system_, vehicle, settings);
+  assembly_ = assembler_->assemble(merged_at_);
+  composite_ = mesher::composite_grid(system_->grids());
+  mesh_ = std::make_unique<Mesh>(composite_.grid);
+  overset_ = std::make_unique<Overset>(*mesh_, mesher::composite_stencils(composite_, assembly_),
+                                       composite_.cell_offset);
+}
+
+VehicleOverset::~VehicleOverset() = default;
+
+std::string VehicleOverset::fin_wall(int k) const {
+  const auto& name = system_->fins.at(static_cast<std::size_t>(k)).name;
+  return name + "/" + name;
+}
+
+Eigen::Isometry3d VehicleOverset::fin_axes(int k) const {
+  const auto ks = static_cast<std::size_t>(k);
+  const auto& fin = system_->fin_geometry.at(ks);
+  return mesher::fin_placement(fin, system_->fin_deflections[ks]) *
+         mesher::fin_placement(fin, merged_at_[ks]).inverse();
+}
+
+const mesher::Assembly& VehicleOverset::set_fins(const std::vector<double>& deflections) {
+  if (deflections.size() != system_->fins.size())
+    throw std::invalid_argument(fmt::format("VehicleOverset::set_fins: {} deflections for {} fins",
+                                            deflections.size(), system_->fins.size()));
+  const auto before = system_->fin_deflections;
+  try {
+    auto next = assembler_->update(assembly_, deflections);
+    overset_->update(mesher::composite_stencils(composite_, next));
+    assembly_ = std::move(next);
+  } catch (...) {
+    // The grids and the assembler's state back where the coupling is (a full assembly: the
+    // failed update left the assembler at the new deflections).
+    assembly_ = assembler_->assemble(before);
+    throw;
+  }
+  orient();
+  return assembly_;
+}
+
+void VehicleOverset::orient() {
+  std::vector<Eigen::Matrix3d> orientation(system_->grids().size(), Eigen::Matrix3d::Identity());
+  for (int k = 0; k < fins(); ++k)
+    orientation[static_cast<std::size_t>(fin_component(k))] = fin_axes(k).linear();
+  overset_->set_orientation(std::move(orientation));
+}
+
+std::vector<FrameMotion> VehicleOverset::motions(const FrameMotion& body,
+                                                 const std::vector<double>& rates) const {
+  if (!rates.empty() && rates.size() != system_->fins.size())
+    throw std::invalid_argument(fmt::format("VehicleOverset::motions: {} rates for {} fins",
+                                            rates.size(), system_->fins.size()));
+  std::vector<FrameMotion> out(system_->grids().size(), body);
+  for (int k = 0; k < fins(); ++k) {
+    const auto ks = static_cast<std::size_t>(k);
+    const auto& fin = system_->fin_geometry[ks];
+    const double rate = rates.empty() ? 0.0 : rates[ks];
+    out[static_cast<std::size_t>(fin_component(k))] =
+        placed_motion(body, fin_axes(k), rate * fin.span_axis(), fin.post_origin());
+  }
+  return out;
+}
+
+}  // namespace auvloop::engine::fv
