@@ -41,7 +41,8 @@ double turned_mismatch(const fv::VehicleOverset& sys, const Eigen::Vector3d& u_b
   };
   for (int c = 0; c < n; ++c) {
     const Eigen::Vector3d v = axes(ov.component_of(c)).transpose() * u_body;
-    for (std::size_t i = 0; i < 3; ++i) u[i][static_cast<std::size_t>(c)] = v[static_cast<Eigen::Index>(i)];
+    for (std::size_t i = 0; i < 3; ++i)
+      u[i][static_cast<std::size_t>(c)] = v[static_cast<Eigen::Index>(i)];
   }
   double worst = 0;
   for (int c : ov.fringe_cells()) {
