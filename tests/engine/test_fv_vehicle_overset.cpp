@@ -4,7 +4,8 @@
 // in every fringe cell in that cell's axes (a missing turn of a fin's axes would be off by the
 // deflection); fin k's axes are its post rotation by d_k - d0_k; the motions turn each fin
 // about its post (zero grid velocity on the post, rate x arm off it); bad input is rejected and
-// a rejected update keeps the coupling.
+// a rejected update keeps the coupling; every wall face belongs to an active cell, the hull's
+// wall area is the Myring profile's (faceted), the fins' equal, at rest and turned.
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -13,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "auvloop/engine/fv/vehicle_overset.hpp"
+#include "auvloop/geometry/myring.hpp"
 #include "auvloop/mesher/mesh_settings.hpp"
 
 using namespace auvloop;
@@ -110,4 +112,54 @@ TEST(VehicleOverset, BadDeflectionsAreRejectedKeepingTheCoupling) {
   EXPECT_THROW((void)sys.set_fins({0.1, 0.2}), std::invalid_argument);
   EXPECT_EQ(sys.assembly().grids[0].status, before);
   EXPECT_EQ(sys.deflections(), std::vector<double>(4, 0.0));
+}
+
+// Forces per grid (issue 17, item 4): the hull's and each fin's wall patches are disjoint by
+// construction (a fin stands a gap off the hull, its root face a wall of its own grid), so the
+// force on each patch counts every wall face once, provided no wall face belongs to a hole or
+// fringe cell (whose values are not the flow's there). Checked at rest and at turned fins; the
+// hull's wall area against the Myring profile's (side integral plus nose and tail faces: the
+// faceted wall lies inside the exact one, 40 facets round: (pi/40)^2/6 = 0.1 % below, plus the
+// chords along the profile); the four identical fins' areas equal and unchanged by turning.
+TEST(VehicleOverset, EveryWallFaceIsAnActiveCellsSoEachPatchCountsItsWallOnce) {
+  auto sys = remus_coarse();
+  const auto vehicle = geometry::preset_vehicle("remus100");
+  const geometry::MyringProfile hull(vehicle.hull);
+  const int n = 100000;
+  const double length = hull.length(), dx = length / n;
+  double exact =
+      std::numbers::pi * (std::pow(hull.radius(0), 2) + std::pow(hull.radius(length), 2));
+  for (int i = 0; i < n; ++i) {
+    const double x = (i + 0.5) * dx, r = hull.radius(x), s = hull.slope(x);
+    exact += 2 * std::numbers::pi * r * std::sqrt(1 + s * s) * dx;
+  }
+  const auto wall_area = [&](const std::string& name) {
+    const auto& m = sys.mesh();
+    for (const auto& p : m.grid().patches) {
+      if (p.name != name) continue;
+      double area = 0;
+      for (int i = 0; i < p.size; ++i) {
+        const int f = p.start + i;
+        EXPECT_TRUE(sys.overset().active(m.owner(f))) << name << " face " << f;
+        area += m.area(f).norm();
+      }
+      return area;
+    }
+    ADD_FAILURE() << "no patch " << name;
+    return 0.0;
+  };
+  double fin0 = 0;
+  for (const auto& d : {std::vector<double>(4, 0.0),
+                        std::vector<double>{30 * kDeg, -30 * kDeg, 20 * kDeg, -20 * kDeg}}) {
+    sys.set_fins(d);
+    const double a = wall_area(fv::VehicleOverset::hull_wall());
+    EXPECT_LT(a, exact);
+    EXPECT_GT(a, 0.995 * exact) << a << " against " << exact;
+    for (int k = 0; k < sys.fins(); ++k) {
+      const double f = wall_area(sys.fin_wall(k));
+      if (fin0 == 0) fin0 = f;
+      EXPECT_NEAR(f, fin0, 1e-12 * fin0) << k;
+    }
+  }
+  EXPECT_GT(fin0, 0);
 }
