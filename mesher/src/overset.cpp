@@ -24,11 +24,11 @@ namespace auvloop::mesher {
 
 using overset_detail::beyond;
 using overset_detail::Box;
+using overset_detail::convex_weights;
 using overset_detail::GridData;
 using overset_detail::kInf;
 using overset_detail::KPoint;
 using overset_detail::KSearch;
-using overset_detail::linear_weights;
 using overset_detail::locate_cell;
 using overset_detail::nearest;
 using overset_detail::nearest_first;
@@ -68,9 +68,9 @@ namespace {
 // 50 mm hull radius at the fins.
 constexpr double kWallSliver = 0.05;
 
-// The largest sum |w| of a stencil taken without trying a larger one (bounded weights: the
-// interpolation's Lebesgue constant; 1 to 3 for the bulk of the REMUS stencils).
-constexpr double kGoodStencil = 10;
+// A stencil whose non-negative weights (convex_weights) miss linear exactness by less than this
+// (relative to its extent) is taken without trying a larger one.
+constexpr double kExactLinear = 1e-9;
 
 // How deep inside the covering grid's active region (away from its holes and outer boundary) a
 // cell of this size must lie to be covered, where the covering cell has this radius (largest
@@ -372,25 +372,24 @@ struct OversetAssembler::Impl {
     const int stamp = ++stamps[static_cast<std::size_t>(h)];
     std::vector<int> reached{loc};
     mark[static_cast<std::size_t>(loc)] = stamp;
-    // A candidate's weights are kept when they are bounded (sum |w| <= kGoodStencil: an
-    // interpolation, or a short extrapolation); otherwise the rings grow, and the candidate with
-    // the smallest sum |w| is taken at the end. Centres that hardly span the space give weights
-    // of 1e8 that reproduce linear fields and amplify everything else.
+    // The weights are non-negative (convex_weights: no value beyond its donors', so that no
+    // Schwarz loop between two grids' fringes can grow). A candidate that reproduces linear
+    // fields (its centres surround xl) is kept; otherwise the rings grow, and the candidate
+    // nearest to linear is taken at the end.
     std::vector<int> best;
     std::vector<double> best_w;
-    double best_sum = std::numeric_limits<double>::infinity();
+    double best_error = std::numeric_limits<double>::infinity();
     const auto consider = [&](const std::vector<int>& candidate) {
       std::vector<Eigen::Vector3d> xs;
       for (int c : candidate) xs.push_back(hd.geo.cell_centre[static_cast<std::size_t>(c)]);
-      if (!linear_weights(xs, xl, w, planar)) return false;
-      double sum = 0;
-      for (double v : w) sum += std::abs(v);
-      if (sum < best_sum) {
-        best_sum = sum;
+      const double error = convex_weights(xs, xl, w, planar);
+      if (error < 0) return false;
+      if (error < best_error) {
+        best_error = error;
         best = candidate;
         best_w = w;
       }
-      return sum <= kGoodStencil;
+      return error <= kExactLinear;
     };
     const auto settle = [&] {
       if (best.empty()) return false;
@@ -828,7 +827,7 @@ struct OversetAssembler::Impl {
   // higher priority now offers an active cell containing the centre: the donor a full search would
   // choose is then the same cell. A fallback stencil is refitted while no grid offers an active
   // containing cell and its first cell stays within the fallback reach. Either only while the
-  // new weights stay bounded (kGoodStencil).
+  // new weights reproduce linear fields (kExactLinear).
   bool refit(const Assembly& a, const GridAssembly& pg, int g, int c, std::vector<int>& cells,
              std::vector<double>& w) const {
     const auto cu = static_cast<std::size_t>(c);
@@ -853,10 +852,9 @@ struct OversetAssembler::Impl {
     if (outranked(a, g, c, dg, fallback)) return false;
     std::vector<Eigen::Vector3d> xs;
     for (int s : cells) xs.push_back(hd.geo.cell_centre[static_cast<std::size_t>(s)]);
-    if (!linear_weights(xs, xl, w, planar)) return false;
-    double sum = 0;  // weights grown unbounded at the new place: search again (stencil_in)
-    for (double v : w) sum += std::abs(v);
-    return sum <= kGoodStencil;
+    // No longer exact for linear fields at the new place: search again (stencil_in).
+    const double error = convex_weights(xs, xl, w, planar);
+    return error >= 0 && error <= kExactLinear;
   }
 
   // A stencil between two grids that did not move is kept as it is (weights included) when its

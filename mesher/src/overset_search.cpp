@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <utility>
 
 #include <Eigen/Dense>
@@ -204,6 +205,151 @@ bool linear_weights(const std::vector<Eigen::Vector3d>& xs, const Eigen::Vector3
   for (int step = 0; step < 2; ++step) wv += solve(e1 - A * wv);
   w.assign(wv.data(), wv.data() + n);
   return true;
+}
+
+namespace {
+// Lawson and Hanson's NNLS ("Solving Least Squares Problems", 1974, ch. 23): x >= 0 minimising
+// |E x - f| for a small dense E; the passive set's least-squares solves by complete orthogonal
+// decomposition (minimum norm when it has more columns than E has rows).
+Eigen::VectorXd nnls(const Eigen::MatrixXd& E, const Eigen::VectorXd& f) {
+  const Eigen::Index n = E.cols();
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
+  std::vector<char> passive(static_cast<std::size_t>(n), 0);
+  const double tol = 1e-12 * std::max(1.0, E.cwiseAbs().maxCoeff()) * std::max(1.0, f.norm());
+  for (int outer = 0; outer < 3 * static_cast<int>(n) + 10; ++outer) {
+    const Eigen::VectorXd grad = E.transpose() * (f - E * x);
+    Eigen::Index j = -1;
+    double best = tol;
+    for (Eigen::Index i = 0; i < n; ++i)
+      if (!passive[static_cast<std::size_t>(i)] && grad[i] > best) {
+        best = grad[i];
+        j = i;
+      }
+    if (j < 0) break;
+    passive[static_cast<std::size_t>(j)] = 1;
+    for (int inner = 0; inner <= static_cast<int>(n); ++inner) {
+      std::vector<Eigen::Index> cols;
+      for (Eigen::Index i = 0; i < n; ++i)
+        if (passive[static_cast<std::size_t>(i)]) cols.push_back(i);
+      Eigen::MatrixXd Ep(E.rows(), static_cast<Eigen::Index>(cols.size()));
+      for (std::size_t k = 0; k < cols.size(); ++k)
+        Ep.col(static_cast<Eigen::Index>(k)) = E.col(cols[k]);
+      const Eigen::VectorXd zp = Ep.completeOrthogonalDecomposition().solve(f);
+      Eigen::VectorXd z = Eigen::VectorXd::Zero(n);
+      for (std::size_t k = 0; k < cols.size(); ++k) z[cols[k]] = zp[static_cast<Eigen::Index>(k)];
+      if (zp.minCoeff() > 0) {
+        x = z;
+        break;
+      }
+      double alpha = 1;
+      for (Eigen::Index i : cols)
+        if (z[i] <= 0) alpha = std::min(alpha, x[i] / (x[i] - z[i]));
+      x += alpha * (z - x);
+      for (Eigen::Index i : cols)
+        if (x[i] <= tol) {
+          x[i] = 0;
+          passive[static_cast<std::size_t>(i)] = 0;
+        }
+    }
+  }
+  return x;
+}
+}  // namespace
+
+double convex_weights(const std::vector<Eigen::Vector3d>& xs, const Eigen::Vector3d& x,
+                      std::vector<double>& w, bool planar) {
+  if (!linear_weights(xs, x, w, planar)) return -1;
+  const auto n = static_cast<Eigen::Index>(xs.size());
+  const Eigen::Index m = planar ? 3 : 4;
+  double h = 0;
+  for (const auto& p : xs) h = std::max(h, (p - x).norm());
+  const auto offset = [&](const std::vector<double>& v) {
+    Eigen::Vector3d o = Eigen::Vector3d::Zero();
+    for (Eigen::Index i = 0; i < n; ++i)
+      o += v[static_cast<std::size_t>(i)] * (xs[static_cast<std::size_t>(i)] - x) / h;
+    if (planar) o.z() = 0;
+    return o.norm();
+  };
+  double negative = 0;
+  for (double v : w) negative += std::max(0.0, -v);
+  if (negative <= kNegativeWeight) return offset(w);  // a.
+  // b. The constraints with the columns scaled by 1 / (|x_i - x| / h): w_i = s_i v_i.
+  Eigen::MatrixXd E(m, n);
+  Eigen::VectorXd scale(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const Eigen::Vector3d r = (xs[static_cast<std::size_t>(i)] - x) / h;
+    scale[i] = 1.0 / (r.norm() + 1e-3);
+    E(0, i) = 1.0;
+    E.block(1, i, m - 1, 1) = r.head(m - 1);
+    E.col(i) *= scale[i];
+  }
+  const Eigen::VectorXd e1 = Eigen::VectorXd::Unit(m, 0);
+  Eigen::VectorXd v = nnls(E, e1);
+  std::vector<double> trial(static_cast<std::size_t>(n));
+  for (Eigen::Index i = 0; i < n; ++i) trial[static_cast<std::size_t>(i)] = scale[i] * v[i];
+  double sum = std::accumulate(trial.begin(), trial.end(), 0.0);
+  if (std::abs(sum - 1) < 1e-9 && offset(trial) < 1e-9) {
+    // In the hull: from this feasible point to the weights of least sum w_i^2 / D_i among the
+    // non-negative ones (the minimum-norm solution of a. with the bounds: a primal active-set
+    // method; at each free set F, w_F = D_F A_F^T y / 2 with (A_F D_F A_F^T) y = 2 e1).
+    Eigen::MatrixXd A(m, n);
+    Eigen::VectorXd D(n);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const Eigen::Vector3d r = (xs[static_cast<std::size_t>(i)] - x) / h;
+      A(0, i) = 1.0;
+      A.block(1, i, m - 1, 1) = r.head(m - 1);
+      D(i) = 1.0 / (r.squaredNorm() + 1e-3);
+    }
+    Eigen::VectorXd wv = Eigen::Map<const Eigen::VectorXd>(trial.data(), n);
+    std::vector<char> free(static_cast<std::size_t>(n));
+    for (Eigen::Index i = 0; i < n; ++i) free[static_cast<std::size_t>(i)] = wv[i] > 0 ? 1 : 0;
+    for (int it = 0; it < 4 * static_cast<int>(n) + 10; ++it) {
+      Eigen::MatrixXd N = Eigen::MatrixXd::Zero(m, m);
+      for (Eigen::Index i = 0; i < n; ++i)
+        if (free[static_cast<std::size_t>(i)]) N += D(i) * A.col(i) * A.col(i).transpose();
+      const Eigen::FullPivLU<Eigen::MatrixXd> lu(N);
+      if (!lu.isInvertible()) break;  // the free centres span less than the space: keep w
+      const Eigen::VectorXd y = lu.solve(2 * e1);
+      Eigen::VectorXd z = Eigen::VectorXd::Zero(n);
+      for (Eigen::Index i = 0; i < n; ++i)
+        if (free[static_cast<std::size_t>(i)]) z[i] = 0.5 * D(i) * A.col(i).dot(y);
+      double alpha = 1;
+      Eigen::Index block = -1;
+      for (Eigen::Index i = 0; i < n; ++i)
+        if (free[static_cast<std::size_t>(i)] && z[i] < 0 && wv[i] / (wv[i] - z[i]) < alpha) {
+          alpha = wv[i] / (wv[i] - z[i]);
+          block = i;
+        }
+      wv += alpha * (z - wv);
+      if (block >= 0) {  // a weight reached zero on the way: bound it
+        wv[block] = 0;
+        free[static_cast<std::size_t>(block)] = 0;
+        continue;
+      }
+      // At the free set's optimum: release the bound whose multiplier -(A^T y)_i is most negative.
+      Eigen::Index release = -1;
+      double most = 1e-12;
+      for (Eigen::Index i = 0; i < n; ++i)
+        if (!free[static_cast<std::size_t>(i)] && A.col(i).dot(y) > most) {
+          most = A.col(i).dot(y);
+          release = i;
+        }
+      if (release < 0) break;  // optimal
+      free[static_cast<std::size_t>(release)] = 1;
+    }
+    for (Eigen::Index i = 0; i < n; ++i) trial[static_cast<std::size_t>(i)] = std::max(0.0, wv[i]);
+    w = trial;
+    return offset(w);
+  }
+  // c. Beyond the hull: the sum weighted above the offsets, then normalised.
+  E.row(0) *= 1e3;
+  v = nnls(E, 1e3 * e1);
+  for (Eigen::Index i = 0; i < n; ++i) trial[static_cast<std::size_t>(i)] = scale[i] * v[i];
+  sum = std::accumulate(trial.begin(), trial.end(), 0.0);
+  if (!(sum > 0)) return -1;
+  for (double& t : trial) t /= sum;
+  w = trial;
+  return offset(w);
 }
 
 }  // namespace auvloop::mesher::overset_detail

@@ -6,7 +6,9 @@
 //   2. locate_cell: the cell containing a point, by a walk across the face the point lies furthest
 //      beyond, from a seed or the nearest centre (k-d tree), with fallbacks for warped cells;
 //   3. linear_weights: interpolation weights that reproduce linear fields (in the plane for
-//      planar systems of one-cell-thick grids), the minimum weighted norm solution.
+//      planar systems of one-cell-thick grids), the minimum weighted norm solution;
+//      convex_weights: the same made non-negative (a convex combination) where the point lies in
+//      the convex hull of the centres, the nearest to linear of the non-negative ones elsewhere.
 // Internal to the mesher (mesher/src).
 #pragma once
 
@@ -103,5 +105,27 @@ void nearest_first(const GridData& d, const Eigen::Vector3d& x, std::vector<int>
 // components only when `planar`); false when the centres do not span the space (3D or the plane).
 bool linear_weights(const std::vector<Eigen::Vector3d>& xs, const Eigen::Vector3d& x,
                     std::vector<double>& w, bool planar);
+// The most negative weight (summed over a stencil) that step 3 keeps: an interpolation then
+// amplifies by at most sum |w| = 1 + 2 * 0.1 in the max norm. Measured on the REMUS coarse
+// system (docs/mesher.md, "Donors"): the explicit Schwarz iteration of the Laplacian between its
+// grids contracts by 0.957 a pass with 0, 0.960 with 0.1, 0.975 with 0.25 and grew by 1.12 with
+// the earlier bound sum |w| <= 10; the 2D validations' stencils all lie within 0.1 (with 0, the
+// schaefer-turek-2d1-overset estimates moved by 1e-4 and out of the marginally met intervals).
+inline constexpr double kNegativeWeight = 0.1;
+
+// Step 3 as the assembly uses it: weights with sum w = 1 bounded by their donors' values (up to
+// kNegativeWeight), so that an explicit Schwarz iteration between two grids cannot grow:
+//   a. linear_weights when their negative ones sum to at most kNegativeWeight;
+//   b. else, when x lies in the centres' convex hull, the weights of a. with the bounds w >= 0:
+//      the least sum w_i^2 / D_i of the non-negative weights exact for linear fields (a primal
+//      active-set method from the feasible point that Lawson and Hanson's NNLS finds for
+//      sum w_i = 1, sum w_i (x_i - x) = 0);
+//   c. else (x beyond the hull: a cell between a wall and its donors' centres) the same NNLS
+//      with the sum weighted 1e3 times the offsets, normalised to sum w = 1: exact for
+//      constants, the smallest offset sum w_i (x_i - x) of the non-negative combinations.
+// Returns |sum w_i (x_i - x)| relative to the stencil's extent (0 up to round-off when linear
+// fields are reproduced), or a negative value when the centres do not span the space.
+double convex_weights(const std::vector<Eigen::Vector3d>& xs, const Eigen::Vector3d& x,
+                      std::vector<double>& w, bool planar);
 
 }  // namespace auvloop::mesher::overset_detail

@@ -6,6 +6,7 @@
 // REMUS coarse system's assembly in composite numbers: every fringe cell's stencil reproduces a
 // linear field at its composite centre, and its donors are active composite cells.
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <stdexcept>
 
@@ -99,7 +100,11 @@ TEST(CompositeGrid, RejectsNoComponentsAndTwoOfOneName) {
   EXPECT_THROW(composite_grid(twice), std::invalid_argument);
 }
 
-TEST(CompositeStencils, OnTheRemusCoarseSystemTheyReproduceALinearFieldAtEveryFringeCell) {
+// The weights sum to one with at most 0.1 of negative weight (an interpolated value hardly
+// beyond its donors', session 17; before, sum |w| up to 10), exact for linear fields wherever
+// the fringe centre lies among its donors' centres; the rest (centres between a wall and the
+// donor grid's first centres) miss a linear field by less than its change over the stencil.
+TEST(CompositeStencils, OnTheRemusCoarseSystemTheyAreConvexAndReproduceALinearField) {
   const auto vehicle = auvloop::geometry::preset_vehicle("remus100");
   GridSystem sys = build_grid_system(vehicle, mesh_preset("coarse", vehicle));
   OversetAssembler assembler(sys, vehicle);
@@ -112,9 +117,10 @@ TEST(CompositeStencils, OnTheRemusCoarseSystemTheyReproduceALinearFieldAtEveryFr
   const CompositeStencils s = composite_stencils(c, a);
   ASSERT_EQ(s.status.size(), static_cast<std::size_t>(c.grid.cells));
   ASSERT_EQ(s.offsets.size(), s.status.size() + 1);
-  const auto f = [](const Eigen::Vector3d& x) { return 3 + 2 * x.x() - 5 * x.y() + 7 * x.z(); };
-  int fringe = 0;
-  double largest_sum = 0;  // of |w| over a stencil: bounded (the interpolation amplifies no noise)
+  const Eigen::Vector3d gradient(2, -5, 7);
+  const auto f = [&](const Eigen::Vector3d& x) { return 3 + gradient.dot(x); };
+  int fringe = 0, inexact = 0;
+  double worst = 0;  // of the inexact ones' error relative to |grad f| times the stencil extent
   for (std::size_t cell = 0; cell < s.status.size(); ++cell) {
     const int n = s.offsets[cell + 1] - s.offsets[cell];
     if (s.status[cell] != CellStatus::fringe) {
@@ -123,21 +129,39 @@ TEST(CompositeStencils, OnTheRemusCoarseSystemTheyReproduceALinearFieldAtEveryFr
     }
     ++fringe;
     ASSERT_GT(n, 0) << "fringe cell " << cell << " without donors";
-    double value = 0, scale = 0, sum = 0;
+    double value = 0, scale = 0, sum = 0, extent = 0, negative = 0;
     for (int e = s.offsets[cell]; e < s.offsets[cell + 1]; ++e) {
       const auto d = static_cast<std::size_t>(s.donors[static_cast<std::size_t>(e)]);
       ASSERT_EQ(s.status[d], CellStatus::active) << "donor " << d << " of " << cell;
       const double w = s.weights[static_cast<std::size_t>(e)];
+      negative += std::max(0.0, -w);
       value += w * f(geo.cell_centre[d]);
-      sum += std::abs(w);
+      sum += w;
       scale += std::abs(w * f(geo.cell_centre[d]));
+      extent = std::max(extent, (geo.cell_centre[d] - geo.cell_centre[cell]).norm());
     }
-    ASSERT_NEAR(value, f(geo.cell_centre[cell]), 1e-10 * scale) << "fringe cell " << cell;
-    largest_sum = std::max(largest_sum, sum);
+    ASSERT_NEAR(sum, 1.0, 1e-12) << "fringe cell " << cell;
+    std::size_t g = 0;
+    while (g + 1 < c.cell_offset.size() && static_cast<int>(cell) >= c.cell_offset[g + 1]) ++g;
+    const auto local = cell - static_cast<std::size_t>(c.cell_offset[g]);
+    const bool composed = a.grids[g].chained[local] != 0 || a.grids[g].fallback[local] != 0;
+    // A stencil composed of two (a chain through another fringe cell's) amplifies by at most
+    // 1.2^2 = 1 + 2 * 0.22.
+    ASSERT_LE(negative, (composed ? 0.22 : 0.1) + 1e-12) << "fringe cell " << cell;
+    const double error = std::abs(value - f(geo.cell_centre[cell]));
+    if (error > 1e-10 * scale) {
+      ++inexact;
+      worst = std::max(worst, error / (gradient.norm() * extent));
+    }
   }
   EXPECT_GT(fringe, 1000);
-  // Before the bound (session 16) four stencils here had sum |w| of 1e7 to 1e8.
-  EXPECT_LE(largest_sum, 10.0);
+  std::printf(
+      "%d fringe cells, %d not exact for linear fields (worst: %.3f of the change over "
+      "the stencil)\n",
+      fringe, inexact, worst);
+  // Measured (session 17): 664 of 12,123 not exact (5.5 %), the worst 0.204.
+  EXPECT_LT(inexact, fringe / 12);
+  EXPECT_LT(worst, 0.3);
   // A mismatched assembly is named, not read out of bounds.
   Assembly short_one = a;
   short_one.grids.pop_back();
