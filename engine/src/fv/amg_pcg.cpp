@@ -178,13 +178,15 @@ struct Level {
 }  // namespace
 
 struct AmgPcg::Hierarchy {
+  bool symmetric = true;
   std::vector<Level> levels;
   Eigen::LLT<Eigen::MatrixXd> coarsest;
+  Eigen::PartialPivLU<Eigen::MatrixXd> coarsest_lu;  // not symmetric
   Eigen::MatrixXd coarsest_dense;
   Eigen::VectorXd coarsest_x;
   std::vector<double> r, z, p, q;  // flexible CG on the finest level
 
-  explicit Hierarchy(const BlockCsr& A) {
+  Hierarchy(const BlockCsr& A, bool is_symmetric) : symmetric(is_symmetric) {
     levels.reserve(kMaxLevels);  // no reallocation: the levels' matrix pointers stay valid
     levels.emplace_back();
     levels[0].A = &A;
@@ -229,9 +231,15 @@ struct AmgPcg::Hierarchy {
       for (int k = C.row_begin(i); k < C.row_end(i); ++k)
         coarsest_dense(i, C.column(k)) = C.value[static_cast<std::size_t>(k)];
     }
-    coarsest.compute(coarsest_dense);
-    if (coarsest.info() != Eigen::Success)
-      throw std::runtime_error("AMG: the coarsest matrix is not positive definite");
+    if (!symmetric) {
+      coarsest_lu.compute(coarsest_dense);
+      if (!(std::abs(coarsest_lu.determinant()) > 0))
+        throw std::runtime_error("AMG: the coarsest matrix is singular");
+    } else {
+      coarsest.compute(coarsest_dense);
+      if (coarsest.info() != Eigen::Success)
+        throw std::runtime_error("AMG: the coarsest matrix is not positive definite");
+    }
     coarsest_x.resize(C.rows());
   }
 
@@ -240,7 +248,8 @@ struct AmgPcg::Hierarchy {
     Level& L = levels[l];
     const BlockCsr& A = *L.A;
     if (l + 1 == levels.size()) {
-      coarsest_x = coarsest.solve(Eigen::Map<const Eigen::VectorXd>(b.data(), A.rows()));
+      const Eigen::Map<const Eigen::VectorXd> bv(b.data(), A.rows());
+      coarsest_x = symmetric ? Eigen::VectorXd(coarsest.solve(bv)) : coarsest_lu.solve(bv);
       std::copy(coarsest_x.data(), coarsest_x.data() + A.rows(), x.begin());
       return;
     }
@@ -264,8 +273,10 @@ struct AmgPcg::Hierarchy {
         kVectorGrain);
     if (l + 2 == levels.size()) {
       cycle(l + 1, C.b, C.x);
-    } else {
+    } else if (symmetric) {
       kcycle(l + 1);
+    } else {
+      kcycle_gcr(l + 1);
     }
     parallel_for(
         A.rows(),
@@ -325,9 +336,58 @@ struct AmgPcg::Hierarchy {
       L.x[is] = a1 * L.c1[is] + a2 * L.x[is];
     });
   }
+
+  // The K-cycle of a matrix that is not symmetric (Notay's AGMG): two steps of GCR instead of
+  // flexible CG, x = a1 c1 + a2 c2 minimising |b - A x| over the two directions, the second only
+  // when the first left more than a quarter of the residual.
+  void kcycle_gcr(std::size_t l) {
+    Level& L = levels[l];
+    const BlockCsr& A = *L.A;
+    const int n = A.rows();
+    const auto each = [&](auto&& fn) { parallel_for(n, fn, kVectorGrain); };
+    cycle(l, L.b, L.c1);
+    A.multiply_dot<true>(L.c1, L.v1);  // v1 = A c1
+    const auto [v1v1, v1b] = dot2(L.v1, L.v1, L.b);
+    const double b_squared = dot(L.b, L.b);
+    if (!(v1v1 > 0)) {
+      L.x = L.c1;
+      return;
+    }
+    const double a = v1b / v1v1;
+    const double r1_squared = parallel_sum<1>(
+        n,
+        [&](int lo, int hi, std::array<double, 1>& s) {
+          for (int i = lo; i < hi; ++i) {
+            const auto is = static_cast<std::size_t>(i);
+            L.r1[is] = L.b[is] - a * L.v1[is];
+            s[0] += L.r1[is] * L.r1[is];
+          }
+        },
+        kVectorGrain)[0];
+    if (std::sqrt(r1_squared) <= kKcycleTolerance * std::sqrt(b_squared)) {
+      each(
+          [&](int i) { L.x[static_cast<std::size_t>(i)] = a * L.c1[static_cast<std::size_t>(i)]; });
+      return;
+    }
+    cycle(l, L.r1, L.x);              // c2 = L.x
+    A.multiply_dot<true>(L.x, L.v2);  // v2 = A c2
+    const auto [v2v1, v2r1] = dot2(L.v2, L.v1, L.r1);
+    const double g = v2v1 / v1v1;  // v2 - g v1 is orthogonal to v1
+    const double w_squared = dot(L.v2, L.v2) - 2 * g * v2v1 + g * g * v1v1;
+    if (!(w_squared > 1e-30 * dot(L.v2, L.v2))) {
+      each(
+          [&](int i) { L.x[static_cast<std::size_t>(i)] = a * L.c1[static_cast<std::size_t>(i)]; });
+      return;
+    }
+    const double a2 = (v2r1 - g * dot(L.v1, L.r1)) / w_squared;
+    each([&](int i) {
+      const auto is = static_cast<std::size_t>(i);
+      L.x[is] = (a - a2 * g) * L.c1[is] + a2 * L.x[is];
+    });
+  }
 };
 
-AmgPcg::AmgPcg() = default;
+AmgPcg::AmgPcg(bool symmetric) : symmetric_(symmetric) {}
 AmgPcg::~AmgPcg() = default;
 
 int AmgPcg::levels() const {
@@ -338,12 +398,11 @@ int AmgPcg::cells(int level) const {
 }
 
 void AmgPcg::plan(const BlockCsr& A) {
-  h_ = std::make_unique<Hierarchy>(A);
+  h_ = std::make_unique<Hierarchy>(A, symmetric_);
   fresh_ = true;
 }
 
-SolveStats AmgPcg::solve(const BlockCsr& A, bool changed, std::span<const double> b,
-                         std::span<double> x, const Tolerance& tolerance, int max_iterations) {
+void AmgPcg::prepare(const BlockCsr& A, bool changed) {
   if (!h_) plan(A);  // aggregates from the first matrix, kept for the grid's lifetime
   if (fresh_) changed = true;
   fresh_ = false;
@@ -351,6 +410,17 @@ SolveStats AmgPcg::solve(const BlockCsr& A, bool changed, std::span<const double
   if (!A.keeps_single())
     throw std::logic_error("AmgPcg: the matrix must keep its single-precision copy (keep_single)");
   if (changed) h_->load_coefficients();
+}
+
+void AmgPcg::precondition(const BlockCsr& A, bool changed, std::span<const double> r,
+                          std::span<double> z) {
+  prepare(A, changed);
+  h_->cycle(0, r, z);
+}
+
+SolveStats AmgPcg::solve(const BlockCsr& A, bool changed, std::span<const double> b,
+                         std::span<double> x, const Tolerance& tolerance, int max_iterations) {
+  prepare(A, changed);
 
   auto& H = *h_;
   const int n = A.rows();

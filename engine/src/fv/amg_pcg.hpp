@@ -41,7 +41,10 @@ namespace auvloop::engine::fv {
 
 class AmgPcg {
  public:
-  AmgPcg();
+  // `symmetric` false: a matrix that is not symmetric (an implicitly coupled overset system,
+  // with its interpolation rows): the K-cycle's two Krylov steps are GCR's (Notay's AGMG for
+  // nonsymmetric matrices), the coarsest level an LU factor; only precondition() applies then.
+  explicit AmgPcg(bool symmetric = true);
   ~AmgPcg();
   AmgPcg(const AmgPcg&) = delete;
   AmgPcg& operator=(const AmgPcg&) = delete;
@@ -56,13 +59,21 @@ class AmgPcg {
   // of from the first solve's: aggregates from a matrix that depends on the grid alone make
   // every solve independent of the run's history, so that a restart continues bitwise.
   void plan(const BlockCsr& A);
+  // One cycle from zero as the preconditioner of another Krylov method: z ~ A^-1 r (the K-cycle
+  // makes it a nonlinear map, hence flexible GMRES, fgmres.cpp). `changed` as for solve: pass it
+  // with a solve's first call, false after.
+  void precondition(const BlockCsr& A, bool changed, std::span<const double> r,
+                    std::span<double> z);
 
   [[nodiscard]] int levels() const;
   [[nodiscard]] int cells(int level) const;
 
  private:
   struct Hierarchy;
+  // The hierarchy for A, planned if there is none, with A's coefficients if `changed`.
+  void prepare(const BlockCsr& A, bool changed);
   std::unique_ptr<Hierarchy> h_;
+  bool symmetric_ = true;
   bool fresh_ = false;  // planned, no coefficients loaded yet
 };
 

@@ -45,9 +45,11 @@ SolveStats fgmres(int n, const LinearMap& A, const LinearMap& precondition,
   // 1. The start: r = b - A x and OpenFOAM's normalisation sum |A x - A xbar| + |b - A xbar|,
   // A xbar = xbar A 1.
   A(x, W.w);
-  const double xbar = parallel_sum<1>(n, [&](int lo, int hi, std::array<double, 1>& s) {
-                        for (int i = lo; i < hi; ++i) s[0] += x[static_cast<std::size_t>(i)];
-                      })[0] /
+  const double xbar = parallel_sum<1>(n,
+                                      [&](int lo, int hi, std::array<double, 1>& s) {
+                                        for (int i = lo; i < hi; ++i)
+                                          s[0] += x[static_cast<std::size_t>(i)];
+                                      })[0] /
                       std::max(n, 1);
   parallel_for(n, [&](int i) { W.ones[static_cast<std::size_t>(i)] = 1.0; });
   A(W.ones, W.r);  // scratch: A 1

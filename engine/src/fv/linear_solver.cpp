@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -12,6 +13,7 @@
 
 #include "amg_pcg.hpp"
 #include "dic_pcg.hpp"
+#include "fgmres.hpp"
 #include "krylov.hpp"
 #include "parallel.hpp"
 
@@ -173,6 +175,99 @@ struct LinearSolver::Impl {
   std::vector<double> b;        // the right-hand side as loaded
   bool loaded = false;
   KrylovWork work;
+  FgmresWork fgmres_work;  // solve_coupled's
+  // solve_coupled's matrix: the face pattern and the extra entries' pattern it was built for
+  // (an overset assembly: rebuilt, with its multigrid, when the assembly changes).
+  struct Coupled {
+    std::vector<int> rows, start, columns;
+    BlockCsr csr;
+    std::vector<int> entry_face;   // per csr entry: f (row owns face f), ~f, or kNoFace
+    std::vector<int> entry_extra;  // per csr entry: the extra entry that adds to it, or -1
+    std::vector<double> b;
+    bool loaded = false;
+    std::unique_ptr<AmgPcg> amg;
+    static constexpr int kNoFace = std::numeric_limits<int>::min();
+
+    [[nodiscard]] bool matches(const ExtraEntries& e) const {
+      return loaded && e.rows == rows && e.start == start && e.columns == columns;
+    }
+    void build(const Mesh& mesh, const ExtraEntries& e) {
+      rows = e.rows;
+      start = e.start;
+      columns = e.columns;
+      const int n = mesh.cells();
+      std::vector<int> row_start(static_cast<std::size_t>(n) + 1, 0), cols, tags, where;
+      where.assign(e.columns.size(), -1);
+      std::size_t next = 0;  // the next extra row
+      for (int c = 0; c < n; ++c) {
+        const auto begin = cols.size();
+        for (int f : mesh.cell_faces(c)) {
+          if (f >= mesh.internal_faces()) break;  // boundary faces come last
+          const bool owner = mesh.owner(f) == c;
+          cols.push_back(owner ? mesh.neighbour(f) : mesh.owner(f));
+          tags.push_back(owner ? f : ~f);
+        }
+        if (next < e.rows.size() && e.rows[next] == c) {
+          for (int k = e.start[next]; k < e.start[next + 1]; ++k) {
+            const int col = e.columns[static_cast<std::size_t>(k)];
+            const auto it =
+                std::find(cols.begin() + static_cast<std::ptrdiff_t>(begin), cols.end(), col);
+            if (it != cols.end()) {
+              where[static_cast<std::size_t>(k)] = static_cast<int>(it - cols.begin());
+            } else {
+              where[static_cast<std::size_t>(k)] = static_cast<int>(cols.size());
+              cols.push_back(col);
+              tags.push_back(kNoFace);
+            }
+          }
+          ++next;
+        }
+        row_start[static_cast<std::size_t>(c) + 1] = static_cast<int>(cols.size());
+      }
+      csr = BlockCsr(n, row_start, cols);
+      std::vector<int> inverse(cols.size());
+      for (std::size_t k = 0; k < cols.size(); ++k)
+        inverse[static_cast<std::size_t>(csr.permutation()[k])] = static_cast<int>(k);
+      entry_face.resize(cols.size());
+      for (std::size_t k = 0; k < cols.size(); ++k)
+        entry_face[k] = tags[static_cast<std::size_t>(csr.permutation()[k])];
+      entry_extra.assign(cols.size(), -1);
+      for (std::size_t k = 0; k < where.size(); ++k)
+        entry_extra[static_cast<std::size_t>(inverse[static_cast<std::size_t>(where[k])])] =
+            static_cast<int>(k);
+      b.assign(static_cast<std::size_t>(n), 0.0);
+      amg.reset();  // a new pattern: a new hierarchy
+      loaded = false;
+    }
+    // sign * (m + e) into csr and b; whether any coefficient differs from the last load.
+    bool load(const Matrix& m, const ExtraEntries& e, double sign) {
+      const double changes =
+          parallel_sum<1>(csr.rows(), [&](int lo, int hi, std::array<double, 1>& s) {
+            for (int i = lo; i < hi; ++i) {
+              const auto is = static_cast<std::size_t>(i);
+              bool differs = csr.diag[is] != sign * m.diag[is];
+              csr.diag[is] = sign * m.diag[is];
+              b[is] = sign * m.source[is];
+              for (int k = csr.row_begin(i); k < csr.row_end(i); ++k) {
+                const auto ku = static_cast<std::size_t>(k);
+                const int t = entry_face[ku], x = entry_extra[ku];
+                double a = t == kNoFace ? 0.0
+                           : t >= 0     ? m.upper[static_cast<std::size_t>(t)]
+                                        : m.lower[static_cast<std::size_t>(~t)];
+                if (x >= 0) a += e.values[static_cast<std::size_t>(x)];
+                differs = differs || csr.value[ku] != sign * a;
+                csr.value[ku] = sign * a;
+              }
+              s[0] += differs ? 1.0 : 0.0;
+            }
+          })[0];
+      const bool changed = changes > 0 || !loaded;
+      loaded = true;
+      if (changed) csr.coefficients_changed();
+      return changed;
+    }
+  };
+  Coupled coupled;
   std::unique_ptr<AmgPcg> amg;       // built on the first cg-amg solve
   std::unique_ptr<EigenCopy> eigen;  // built on the first solve that needs it
 
@@ -232,7 +327,26 @@ struct LinearSolver::Impl {
     const double value = res.l1 / (res.normalisation + 1e-300);
     (initial ? stats.initial_residual : stats.final_residual) = value;
   }
+
+  AmgPcg& amg_for_csr() {
+    if (!amg) {
+      amg = std::make_unique<AmgPcg>();
+      csr.keep_single();  // the multigrid cycle reads the coefficients in single precision
+    }
+    return *amg;
+  }
 };
+
+void ExtraEntries::multiply_add(std::span<const double> x, std::span<double> y, double sign) const {
+  parallel_for(size(), [&](int k) {  // each row once: no two iterations write one entry of y
+    const auto ku = static_cast<std::size_t>(k);
+    double s = 0;
+    for (int e = start[ku]; e < start[ku + 1]; ++e)
+      s += values[static_cast<std::size_t>(e)] *
+           x[static_cast<std::size_t>(columns[static_cast<std::size_t>(e)])];
+    y[static_cast<std::size_t>(rows[ku])] += sign * s;
+  });
+}
 
 LinearSolver::LinearSolver(const Mesh& mesh, Tolerance tolerance)
     : impl_(std::make_unique<Impl>(mesh, tolerance)) {}
@@ -263,11 +377,7 @@ void LinearSolver::plan_symmetric(const Matrix& m, SymmetricMethod method) {
   const Team::Region team(threads());
   auto& I = *impl_;
   I.load(m, -1.0);
-  if (!I.amg) {
-    I.amg = std::make_unique<AmgPcg>();
-    I.csr.keep_single();
-  }
-  I.amg->plan(I.csr);
+  I.amg_for_csr().plan(I.csr);
 }
 
 SolveStats LinearSolver::solve_symmetric(const Matrix& m, std::span<double> x,
@@ -277,13 +387,8 @@ SolveStats LinearSolver::solve_symmetric(const Matrix& m, std::span<double> x,
   // CG and CHOLMOD want a positive definite matrix: the Laplacian is negative definite, so solve
   // (-A) x = -b.
   const bool changed = I.load(m, -1.0);
-  if (method == SymmetricMethod::cg_amg) {
-    if (!I.amg) {
-      I.amg = std::make_unique<AmgPcg>();
-      I.csr.keep_single();  // the multigrid cycle reads the coefficients in single precision
-    }
-    return I.amg->solve(I.csr, changed, I.b, x, I.tolerance, 2000);
-  }
+  if (method == SymmetricMethod::cg_amg)
+    return I.amg_for_csr().solve(I.csr, changed, I.b, x, I.tolerance, 2000);
   if (method == SymmetricMethod::cg_jacobi) {
     return jacobi_cg(I.csr, I.b, x, I.tolerance, 20000, I.work);
   }
@@ -354,6 +459,58 @@ SolveStats LinearSolver::solve_asymmetric(const Matrix& m, std::span<double> x,
   stats.iterations = iterate(s, E.A, I.b, x, tol.value);
   I.residuals(x, stats, false);
   return stats;
+}
+
+void LinearSolver::plan_coupled(const Matrix& m, const ExtraEntries& extra) {
+  const Team::Region team(threads());
+  auto& I = *impl_;
+  auto& C = I.coupled;
+  if (!C.matches(extra)) C.build(I.mesh, extra);
+  C.load(m, extra, -1.0);
+  if (!C.amg) {
+    C.amg = std::make_unique<AmgPcg>(false);
+    C.csr.keep_single();
+    C.csr.coefficients_changed();
+  }
+  C.amg->plan(C.csr);
+}
+
+SolveStats LinearSolver::solve_coupled(const Matrix& m, const ExtraEntries& extra,
+                                       std::span<double> x,
+                                       std::optional<SymmetricMethod> symmetric, double tolerance) {
+  constexpr int kRestart = 30, kMaxIterations = 2000;
+  const Team::Region team(threads());
+  auto& I = *impl_;
+  auto& C = I.coupled;
+  const Tolerance tol = tolerance > 0 ? Tolerance(tolerance, I.tolerance.norm) : I.tolerance;
+  // A pressure equation is a Laplacian (negative definite): solve (-m - extra) x = -b, whose
+  // diagonal is positive, as the multigrid's smoother and pairing expect.
+  const double sign = symmetric ? -1.0 : 1.0;
+  if (!C.matches(extra)) C.build(I.mesh, extra);
+  const bool changed = C.load(m, extra, sign);
+  const LinearMap A = [&](std::span<const double> in, std::span<double> out) {
+    C.csr.multiply(in, out);
+  };
+  LinearMap P;
+  bool first = true;
+  if (symmetric) {  // the multigrid of the whole coupled system
+    if (!C.amg) {   // no plan_coupled for this pattern: aggregates from this matrix
+      C.amg = std::make_unique<AmgPcg>(false);
+      C.csr.keep_single();
+      C.csr.coefficients_changed();
+    }
+    P = [&](std::span<const double> r, std::span<double> z) {
+      C.amg->precondition(C.csr, changed && first, r, z);
+      first = false;
+    };
+  } else {
+    I.work.resize(C.csr.rows());
+    P = [&](std::span<const double> r, std::span<double> z) {
+      C.csr.sweep(r, z, false, true, I.work.s);  // a symmetric pair from z = 0
+      C.csr.sweep(r, z, true, false, I.work.s);
+    };
+  }
+  return fgmres(C.csr.rows(), A, P, C.b, x, tol, kMaxIterations, kRestart, I.fgmres_work);
 }
 
 }  // namespace auvloop::engine::fv

@@ -63,7 +63,10 @@ void Pimple::assemble_momentum(bool final) {
     if (!final && settings_.relax_u < 1) eq.relax(U.c[i].cells, settings_.relax_u);
     // Overset (overset.hpp, step 1): fringe rows the donors' interpolation of U, hole rows their
     // value, the grid velocity (set_hole_velocity).
-    if (overset_ != nullptr) {
+    if (implicit_overset()) {  // overset_implicit.cpp
+      overset_->couple(eq, {U.c[0].cells, U.c[1].cells, U.c[2].cells}, i, momentum_.extra[i],
+                       fixed_);
+    } else if (overset_ != nullptr) {
       overset_->fixed_values({U.c[0].cells, U.c[1].cells, U.c[2].cells}, i, fixed_);
       eq.fix_values(mesh_, overset_->fixed_cells(), fixed_);
     }
@@ -166,6 +169,9 @@ void Pimple::solve_momentum(StepReport& r, bool first) {
     eq.add_rhs(mesh_, rhs);
     const auto s =
         solve_named(mesh_, eq, U.c[i].cells, fmt::format("momentum equation U{}", "xyz"[i]), [&] {
+          if (implicit_overset())
+            return solver_.solve_coupled(eq, momentum_.extra[i], U.c[i].cells, std::nullopt,
+                                         settings_.momentum_tolerance);
           return solver_.solve_asymmetric(eq, U.c[i].cells, settings_.momentum_solver,
                                           settings_.momentum_tolerance);
         });
@@ -174,6 +180,11 @@ void Pimple::solve_momentum(StepReport& r, bool first) {
     if (first) r.momentum_residual = std::max(r.momentum_residual, s.initial_residual);
     r.outer_residual = std::max(r.outer_residual, s.initial_residual);
     U.c[i].update_boundary(mesh_);
+  }
+  if (implicit_overset()) {  // the fringe cells from their donors (overset_implicit.cpp, 3.)
+    overset_->apply(std::array<std::span<double>, 3>{U.c[0].cells, U.c[1].cells, U.c[2].cells});
+    for (std::size_t i = 0; i < 3; ++i)
+      if (active_[i]) U.c[i].update_boundary(mesh_);
   }
 }
 

@@ -85,6 +85,8 @@ void Overset::assign(mesher::CompositeStencils stencils) {
     live_[static_cast<std::size_t>(f)] =
         own || (f < mesh.internal_faces() && active(mesh.neighbour(f))) ? 1 : 0;
   }
+  list_coupled_rows();
+  ++generation_;
 }
 
 void Overset::set_orientation(std::vector<Eigen::Matrix3d> orientation) {

@@ -11,8 +11,9 @@
 //      a_ra w_k (R_hg)_ii on each donor d_k (entries beyond the face pattern, equal donors of
 //      several neighbours summed), and -a_ra o_a joins its source (Matrix::fix_values with the
 //      fringe value o_a zeroes the face coefficient and moves it there);
-//   3. fringe and hole rows are fixed rows, decoupled (a hole its value, a fringe cell o_a);
-//      after the solve the fringe cells take phi_a from their donors (Overset::apply, + o_a).
+//   3. fringe and hole rows are fixed rows, decoupled (a hole its value, a fringe cell its
+//      current value: no residual); after the solve the fringe cells take phi_a from their
+//      donors (Overset::apply, + o_a).
 // The system left is the active cells' alone: no constraint rows, each active row's
 // off-diagonal sum unchanged by the elimination (the weights sum to one), so the smoothers and
 // the multigrid's pairing see a matrix like a single grid's, with entries reaching into the
@@ -74,8 +75,7 @@ void Overset::implicit_entries(const Matrix& eq, int i, ExtraEntries& extra) con
         const auto su = static_cast<std::size_t>(s);
         const int d = stencils_.donors[su];
         const int g = component_of(d);
-        const double turn =
-            i < 0 || g == h ? 1.0 : rotation(h, g)(static_cast<Eigen::Index>(i), i);
+        const double turn = i < 0 || g == h ? 1.0 : rotation(h, g)(static_cast<Eigen::Index>(i), i);
         row.emplace_back(d, c * stencils_.weights[su] * turn);
       }
     }
@@ -100,6 +100,16 @@ void Overset::couple(Matrix& eq, std::span<const double> field, double hole,
   for (std::size_t j = 0; j < fringe_slot_.size(); ++j)
     values[static_cast<std::size_t>(fringe_slot_[j])] = offsets.empty() ? 0.0 : offsets[j];
   eq.fix_values(mesh_, fixed_, values);  // 3. (and the offsets into the active rows' sources)
+  hold_fringe_rows(eq, field);
+}
+
+// A fringe row, decoupled, returns whatever its source says; the current value makes its
+// residual zero, so that the solve's residuals are the active rows' (apply() sets it after).
+void Overset::hold_fringe_rows(Matrix& eq, std::span<const double> field) const {
+  for (int a : fringe_) {
+    const auto au = static_cast<std::size_t>(a);
+    eq.source[au] = eq.diag[au] * field[au];
+  }
 }
 
 void Overset::couple(Matrix& eq, const Vector& u, std::size_t i, ExtraEntries& extra,
@@ -125,6 +135,7 @@ void Overset::couple(Matrix& eq, const Vector& u, std::size_t i, ExtraEntries& e
     values[static_cast<std::size_t>(fringe_slot_[j])] = cross;
   }
   eq.fix_values(mesh_, fixed_, values);
+  hold_fringe_rows(eq, u[i]);
 }
 
 }  // namespace auvloop::engine::fv

@@ -18,6 +18,7 @@
 // Cost: one more pressure solve per open component and outer iteration, with the factorisation
 // or the hierarchy of the first (same matrix) and a close first guess.
 #include <cmath>
+#include <limits>
 
 #include <Eigen/LU>
 
@@ -49,7 +50,16 @@ void Pimple::balance_overset_mass(const Matrix& free, bool corrected, StepReport
             overset_->component_of(fixed[i]) == comp)
           W.fixed_shift[i] += 1.0;
       W.p_shifted = free;
-      W.p_shifted.fix_values(mesh_, fixed, W.fixed_shift);
+      const auto fringe = overset_->fringe_cells();
+      if (implicit_overset()) {  // p_a = sum_k w_k p_k + 1 in k's fringe cells
+        W.offsets.resize(fringe.size());
+        for (std::size_t j = 0; j < fringe.size(); ++j)
+          W.offsets[j] = overset_->component_of(fringe[j]) == comp ? 1.0 : 0.0;
+        overset_->couple(W.p_shifted, p.cells, std::numeric_limits<double>::quiet_NaN(), W.offsets,
+                         pressure_extra_, W.fixed_shift);
+      } else {
+        W.p_shifted.fix_values(mesh_, fixed, W.fixed_shift);
+      }
       auto& response = shift_response_[k];
       W.p_shift.resize(n);
       parallel_for(mesh_.cells(), [&](int c) {
@@ -58,9 +68,17 @@ void Pimple::balance_overset_mass(const Matrix& free, bool corrected, StepReport
       });
       const auto stats =
           solve_named(mesh_, W.p_shifted, W.p_shift, "pressure equation (mass balance)", [&] {
+            if (implicit_overset())
+              return solver_.solve_coupled(W.p_shifted, pressure_extra_, W.p_shift,
+                                           settings_.pressure_solver);
             return solver_.solve_symmetric(W.p_shifted, W.p_shift, *settings_.pressure_solver);
           });
       r.pressure_iterations += stats.iterations;
+      if (implicit_overset()) {
+        overset_->apply(W.p_shift, std::numeric_limits<double>::quiet_NaN());
+        for (std::size_t j = 0; j < fringe.size(); ++j)
+          W.p_shift[static_cast<std::size_t>(fringe[j])] += W.offsets[j];
+      }
       W.phi_shift.resize(phi.size());
       pressure_flux(W.p_shift, corrected, W.phi_shift);
       const auto qk = interface_flux(*overset_, mesh_, W.phi_shift);

@@ -43,6 +43,16 @@ std::pair<double, int> courant(const Mesh& mesh, std::span<const double> phi, do
   return worst;
 }
 
+const char* to_string(OversetCoupling c) {
+  return c == OversetCoupling::lagged ? "explicit" : "implicit";
+}
+
+OversetCoupling overset_coupling_from_string(const std::string& s) {
+  for (auto c : {OversetCoupling::lagged, OversetCoupling::implicit})
+    if (s == to_string(c)) return c;
+  throw std::invalid_argument("unknown overset coupling '" + s + "' (explicit, implicit)");
+}
+
 Pimple::Pimple(const Mesh& mesh, PimpleSettings settings)
     : U(mesh, "U"),
       p(mesh, "p"),
@@ -69,6 +79,15 @@ Pimple::Pimple(const Mesh& mesh, PimpleSettings settings)
     const bool two_d = !(active_[0] && active_[1] && active_[2]);
     settings_.pressure_solver = two_d ? SymmetricMethod::cholmod_pcg : SymmetricMethod::cg_amg;
   }
+}
+
+void Pimple::plan_implicit() {
+  if (!implicit_overset() || planned_generation_ == overset_->generation()) return;
+  Matrix m = laplacian(mesh_, 1.0, p);
+  overset_->couple(m, p.cells, std::numeric_limits<double>::quiet_NaN(), {}, pressure_extra_,
+                   fixed_);
+  solver_.plan_coupled(m, pressure_extra_);
+  planned_generation_ = overset_->generation();
 }
 
 void Pimple::set_overset(const Overset* overset) {
@@ -119,6 +138,8 @@ void Pimple::initialise() {
   // The pressure solver's structure (cg-amg's aggregates) from the geometric Laplacian, a
   // function of the grid alone, not from the first step's matrix: a restart continues bitwise.
   solver_.plan_symmetric(Matrix(laplacian(mesh_, 1.0, p)), *settings_.pressure_solver);
+  planned_generation_ = -1;
+  plan_implicit();
   // Overset: the open components (overset_mass.cpp), those with fringe cells and an active cell
   // on a fixed-pressure patch; the statuses the fields are now of.
   find_open_components();
@@ -165,6 +186,7 @@ StepReport Pimple::step() {
     throw std::invalid_argument(fmt::format("Pimple: body_force has {} entries for {} cells",
                                             body_force.size(), mesh_.cells()));
   const auto [status_changes, uncovered_cells] = follow_assembly();  // overset re-assembly
+  plan_implicit();
   // Copy assignments into kept storage: no allocation after the first step.
   good_.U = U;
   good_.p = p;

@@ -133,6 +133,10 @@ void Pimple::correct_pressure(StepReport& r, bool first, bool final) {
       continue;
     }
     eqs[i].h_operator(mesh_, U.c[i].cells, HbyA[i]);
+    // Implicit overset coupling: an active row's couplings to its fringe neighbours are entries
+    // beyond the face pattern (overset_implicit.cpp, step 2), part of its H too (fringe rows'
+    // HbyA is set below).
+    if (implicit_overset()) momentum_.extra[i].multiply_add(U.c[i].cells, HbyA[i], -1.0);
     parallel_for(mesh_.cells(), [&](int c) {
       HbyA[i][static_cast<std::size_t>(c)] /= A[static_cast<std::size_t>(c)];
     });
@@ -195,7 +199,10 @@ void Pimple::correct_pressure(StepReport& r, bool first, bool final) {
     const bool balance = overset_ != nullptr && !open_components_.empty() &&
                          corr == settings_.non_orthogonal_correctors;
     if (balance && !shift_current_) W.p_free = eq;  // only the response reads it
-    if (overset_ != nullptr) {
+    if (implicit_overset()) {                       // overset_implicit.cpp
+      overset_->couple(eq, p.cells, std::numeric_limits<double>::quiet_NaN(), {}, pressure_extra_,
+                       fixed_);
+    } else if (overset_ != nullptr) {
       overset_->fixed_values(p.cells, std::numeric_limits<double>::quiet_NaN(), fixed_);
       eq.fix_values(mesh_, overset_->fixed_cells(), fixed_);
     }
@@ -204,10 +211,13 @@ void Pimple::correct_pressure(StepReport& r, bool first, bool final) {
       eq.diag[ref] += eq.diag[ref];
     }
     const auto s = solve_named(mesh_, eq, p.cells, "pressure equation", [&] {
+      if (implicit_overset())
+        return solver_.solve_coupled(eq, pressure_extra_, p.cells, settings_.pressure_solver);
       return solver_.solve_symmetric(eq, p.cells, *settings_.pressure_solver);
     });
     if (first && corr == 0) r.pressure_residual = s.initial_residual;
     r.pressure_iterations += s.iterations;
+    if (implicit_overset()) overset_->apply(p.cells, std::numeric_limits<double>::quiet_NaN());
     pressure_flux(p.cells, corrected, phi);
     // Overset: the open components' interface flux to zero (overset_mass.cpp), last corrector.
     if (balance) balance_overset_mass(W.p_free, corrected, r);
@@ -251,6 +261,7 @@ void Pimple::store_predictor_force() {
     }
     const Matrix& eq = momentum_.eq[i];
     eq.h_operator(mesh_, U.c[i].cells, h);
+    if (implicit_overset()) momentum_.extra[i].multiply_add(U.c[i].cells, h, -1.0);
     force.resize(n);
     parallel_for(mesh_.cells(), [&](int c) {
       const auto s = static_cast<std::size_t>(c);

@@ -11,8 +11,10 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "auvloop/engine/fv/matrix.hpp"
 
@@ -73,6 +75,31 @@ struct SolveStats {
   bool factorised = false;  // a numeric factorisation was (re)computed in this call
 };
 
+// Coefficients of an equation beyond its mesh's face pattern: an overset mesh's implicit
+// coupling (overset.hpp), the donors of a fringe cell's row and an active row's fringe
+// neighbours. Row rows[k] has the entries columns / values at [start[k], start[k + 1]); rows
+// ascending, each once, no column twice in a row, none on the diagonal; an entry in a face
+// neighbour's column adds to the Matrix's coefficient there.
+struct ExtraEntries {
+  std::vector<int> rows, start{0}, columns;
+  std::vector<double> values;
+  void clear() {
+    rows.clear();
+    start.assign(1, 0);
+    columns.clear();
+    values.clear();
+  }
+  void begin_row(int row) { rows.push_back(row); }
+  void add(int column, double value) {
+    columns.push_back(column);
+    values.push_back(value);
+  }
+  void end_row() { start.push_back(static_cast<int>(columns.size())); }
+  [[nodiscard]] int size() const { return static_cast<int>(rows.size()); }
+  // y += sign * E x.
+  void multiply_add(std::span<const double> x, std::span<double> y, double sign = 1.0) const;
+};
+
 class LinearSolver {
  public:
   LinearSolver(const Mesh& mesh, Tolerance tolerance);
@@ -90,6 +117,17 @@ class LinearSolver {
   // `tolerance` > 0 replaces the solver's own value for this solve (in the solver's norm).
   SolveStats solve_asymmetric(const Matrix& m, std::span<double> x, AsymmetricMethod method,
                               double tolerance = 0);
+  // Solves (m + extra) x = source with flexible GMRES (engine/src/fv/fgmres.hpp), preconditioned
+  // by a solver of m alone: for a symmetric m (the pressure equation of an implicitly coupled
+  // overset mesh) a cycle of cg-amg's multigrid, a CHOLMOD solve for cholmod and cholmod-pcg, a
+  // symmetric Gauss-Seidel sweep pair for the others; for an asymmetric m (momentum) the sweep
+  // pair. `tolerance` > 0 replaces the solver's own for this solve.
+  SolveStats solve_coupled(const Matrix& m, const ExtraEntries& extra, std::span<double> x,
+                           std::optional<SymmetricMethod> symmetric, double tolerance = 0);
+  // The multigrid of solve_coupled for symmetric m, planned from this matrix (any coefficients
+  // of the pattern the later solves pass, as plan_symmetric; a geometric Laplacian makes the
+  // solves independent of the run's history, so that a restart continues bitwise).
+  void plan_coupled(const Matrix& m, const ExtraEntries& extra);
 
  private:
   struct Impl;

@@ -3,7 +3,7 @@
 // (active), which take their values from donor cells of another component (fringe), which are out
 // of the flow (hole), and which faces carry flux.
 //
-// Explicit coupling, as Pimple applies it (pimple.hpp, set_overset):
+// Explicit coupling (PimpleSettings::overset_coupling = lagged), as Pimple applies it:
 //   1. momentum: fringe rows fixed to the donors' interpolation of the current U, hole rows to 0
 //      (Matrix::fix_values: active neighbours take the coupling into their sources);
 //   2. pressure, each corrector: fringe rows fixed to the interpolation of the current p, hole rows
@@ -12,6 +12,11 @@
 //      that its U = HbyA - D grad(p) is the interpolated velocity, as in an active cell;
 //   4. after each corrector: fringe U from the donors again, hole U = 0;
 //   5. face mask: a face carries flux only if one of its cells is active (`live`); others zero.
+// Implicit coupling (overset_coupling = implicit; overset_implicit.cpp states it): in steps 1 and
+// 2 the fringe values are eliminated, phi_a = sum_k w_k phi_k with the donors' values unknowns
+// of the same solve, so an active row next to a fringe cell couples to that cell's donors
+// (couple(): the entries beyond the face pattern go to an ExtraEntries, solved by
+// LinearSolver::solve_coupled); after each solve the fringe cells take their interpolation.
 // Grids that turn against each other (a fin on its post, a pitching foil): every component keeps
 // its cells at rest in its own axes (motion.hpp), so a vector interpolated from a donor of
 // component g into a fringe cell of component h is turned from g's axes into h's:
@@ -31,6 +36,8 @@
 
 #include <Eigen/Core>
 
+#include "auvloop/engine/fv/linear_solver.hpp"
+#include "auvloop/engine/fv/matrix.hpp"
 #include "auvloop/engine/fv/mesh.hpp"
 #include "auvloop/mesher/composite_grid.hpp"
 
@@ -51,6 +58,9 @@ class Overset {
   void set_orientation(std::vector<Eigen::Matrix3d> orientation);
   // Whether some component's axes are turned against another's.
   [[nodiscard]] bool turned() const { return turned_; }
+  // Counts the assemblies this coupling has held (construction 1, each update one more): a
+  // solver keeping anything built from the stencils rebuilds it when this changes.
+  [[nodiscard]] int generation() const { return generation_; }
   // Rotation from component g's axes into component h's: R_h^T R_g.
   [[nodiscard]] const Eigen::Matrix3d& rotation(int h, int g) const {
     return rotation_[static_cast<std::size_t>(h * components() + g)];
@@ -82,6 +92,18 @@ class Overset {
   void apply(std::span<double> field, double hole) const;
   // Sets the fringe cells of a vector field to their interpolations (hole cells unchanged).
   void apply(const std::array<std::span<double>, 3>& u) const;
+  // The implicit coupling of `eq` (overset_implicit.cpp) for a scalar field: the fringe values
+  // eliminated, phi_a = sum_k w_k phi_{d_k} + offsets[j] for fringe_cells()[j] (empty: 0), into
+  // the active rows (`extra`: the entries on the donors); fringe and hole rows fixed (a hole
+  // to `hole`, or the field's own value if NaN). After the solve, apply() the interpolation
+  // (and add the offsets). `values`: scratch.
+  void couple(Matrix& eq, std::span<const double> field, double hole,
+              std::span<const double> offsets, ExtraEntries& extra,
+              std::vector<double>& values) const;
+  // The same for component i of a vector field (hole rows keep their own value); with turned
+  // axes the donors' other components are the offsets, at their current values.
+  void couple(Matrix& eq, const Vector& u, std::size_t i, ExtraEntries& extra,
+              std::vector<double>& values) const;
   [[nodiscard]] int components() const { return static_cast<int>(cell_offset_.size()); }
   [[nodiscard]] int component_of(int c) const;
   [[nodiscard]] double active_volume() const { return active_volume_; }
@@ -89,15 +111,25 @@ class Overset {
  private:
   // Validates `stencils` and builds the lists from them (all or nothing).
   void assign(mesher::CompositeStencils stencils);
+  // The implicit coupling's lists (overset_implicit.cpp), from the statuses.
+  void list_coupled_rows();
+  // `extra` for eq (component i of a vector, or -1 for a scalar).
+  void implicit_entries(const Matrix& eq, int i, ExtraEntries& extra) const;
+  void hold_fringe_rows(Matrix& eq, std::span<const double> field) const;
 
   const Mesh& mesh_;
   mesher::CompositeStencils stencils_;
   std::vector<int> cell_offset_;
   std::vector<int> fixed_, fringe_, active_cells_;
   std::vector<char> live_;
+  // Implicit coupling: the active cells with a fringe face neighbour, ascending, and per such
+  // cell the faces to its fringe neighbours at [coupled_start_[k], coupled_start_[k + 1]);
+  // fringe_slot_[j]: the place of fringe_[j] in fixed_.
+  std::vector<int> active_rows_, coupled_start_, coupled_faces_, fringe_slot_;
   double active_volume_ = 0;
   std::vector<Eigen::Matrix3d> orientation_, rotation_;
   bool turned_ = false;
+  int generation_ = 0;
   mutable std::vector<Eigen::Vector3d> scratch_;  // apply()'s interpolated vectors
 };
 

@@ -24,6 +24,16 @@
 
 namespace auvloop::engine::fv {
 
+// How the components of an overset mesh are coupled (overset.hpp, docs/overset-flow.md).
+enum class OversetCoupling {
+  lagged,    // explicit: fringe values from the donors' current values, refreshed before each
+             // momentum solve and each corrector (every solve on its own grid)
+  implicit,  // the interpolation rows in the matrices, one solve for all grids (FGMRES
+             // preconditioned by the explicit coupling's solver; momentum_solver is not used)
+};
+const char* to_string(OversetCoupling c);  // "explicit", "implicit"
+OversetCoupling overset_coupling_from_string(const std::string& s);
+
 struct PimpleSettings {
   double nu = 1e-6;  // kinematic viscosity (m^2/s)
   double dt = 1e-3;  // time step (s); the first one when adaptive
@@ -61,6 +71,7 @@ struct PimpleSettings {
   // relax_u, p by relax_p, a turbulence model by its own): a step is one pass of the
   // iteration towards the steady flow, its dt only a label.
   bool steady = false;
+  OversetCoupling overset_coupling = OversetCoupling::lagged;
 };
 
 struct StepReport {
@@ -175,6 +186,9 @@ class Pimple {
  private:
   struct Momentum {
     std::array<Matrix, 3> eq;  // without the pressure gradient
+    // Implicit overset coupling: each equation's entries beyond the face pattern
+    // (Overset::couple), part of its H(U).
+    std::array<ExtraEntries, 3> extra;
   };
   void assemble_momentum(bool final);
   // The cell gradients of U's three components, computed only when U (its cell and boundary
@@ -221,7 +235,7 @@ class Pimple {
     // Overset mass balance: the pressure matrix before fixing, a shifted copy, its solution and
     // flux, the shifted fixed values.
     Matrix p_free, p_shifted;
-    std::vector<double> p_shift, phi_shift, fixed_shift;
+    std::vector<double> p_shift, phi_shift, fixed_shift, offsets;
     // Overset re-assembly: the filled cells' values of one sweep, the cells that hold a value,
     // those still to fill and those filled in a sweep, the faces that came alive.
     std::vector<double> fill;
@@ -266,6 +280,16 @@ class Pimple {
   const Overset* overset_ = nullptr;
   int reference_cell_ = 0;     // where p = 0 when no patch fixes it (the first active cell)
   std::vector<double> fixed_;  // overset: the fixed cells' values (scratch)
+  // Implicit overset coupling: the pressure equation's entries beyond the face pattern, and the
+  // Overset generation the coupled multigrid was planned for (plan_implicit).
+  ExtraEntries pressure_extra_;
+  int planned_generation_ = -1;
+  // The coupled pressure multigrid planned from the geometric Laplacian whenever the assembly
+  // changed, so that its aggregates depend on the grid and the stencils alone (exact restart).
+  void plan_implicit();
+  [[nodiscard]] bool implicit_overset() const {
+    return overset_ != nullptr && settings_.overset_coupling == OversetCoupling::implicit;
+  }
   // Overset: the components whose active cells touch a fixed-pressure patch, so that their
   // interface flux is not closed by continuity (overset_mass.cpp), and per such component the
   // last pressure response to a unit shift of its fringe values (the next solve's first guess;
