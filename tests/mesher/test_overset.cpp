@@ -1,12 +1,15 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Overset assembly of the REMUS 100 grid system over the fin range: no orphans, donors active,
-// weights summing to one and interpolating linear fields to round-off, the fluid covered.
+// weights summing to one with at most 0.1 of negative weight (0.22 for a stencil composed of
+// two), interpolating linear fields to round-off wherever the fringe centre lies among its
+// donors' centres, the fluid covered.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <numbers>
 #include <random>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -24,8 +27,17 @@ const geometry::Vehicle& remus() {
 
 struct Check {
   int fallbacks = 0, chained = 0;
-  int orphans = 0, fringe = 0, bad_donor_status = 0, largest_stencil = 0;
-  double worst_sum = 0, worst_linear = 0;  // in units of the round-off bound of each sum
+  int orphans = 0, fringe = 0, bad_donor_status = 0, largest_stencil = 0, donors = 0;
+  double worst_sum = 0;  // in units of the round-off bound of each sum
+  // Stencils that miss a linear field by more than round-off (the fringe centre beyond its
+  // donors' centres, between a wall and the donor grid's first centres: convex_weights c.), and
+  // the worst of them relative to the field's change over the stencil (|grad f| times the largest
+  // donor distance).
+  int inexact = 0;
+  double worst_inexact = 0;
+  // The largest negative weight of a stencil (summed), of the plain and the composed (chained or
+  // fallback) ones.
+  double worst_negative = 0, worst_negative_composed = 0;
   // Largest distance from a fringe centre to its nearest stencil centre, in that cell's size
   // (cube root of its volume): how far a fallback stencil extrapolates.
   double farthest_fallback = 0;
@@ -33,7 +45,8 @@ struct Check {
 
 // Every fringe stencil: active donor cells (in the grid each entry names: a chained stencil spans
 // several), weights summing to one, and the linear field f = 3 + 2 x - 5 y + 7 z (body frame)
-// reproduced at the fringe centre.
+// at the fringe centre: reproduced to round-off, or (inexact) within a share of its change over
+// the stencil.
 std::vector<GridGeometry> geometries(const GridSystem& sys) {
   std::vector<GridGeometry> out;
   for (const Grid* g : sys.grids()) out.push_back(compute_geometry(*g));
@@ -42,7 +55,8 @@ std::vector<GridGeometry> geometries(const GridSystem& sys) {
 
 Check check(const OversetAssembler& asmb, const Assembly& a, const std::vector<GridGeometry>& geo) {
   Check r;
-  const auto f = [](const Eigen::Vector3d& x) { return 3 + 2 * x.x() - 5 * x.y() + 7 * x.z(); };
+  const Eigen::Vector3d gradient(2, -5, 7);
+  const auto f = [&](const Eigen::Vector3d& x) { return 3 + gradient.dot(x); };
   for (std::size_t g = 0; g < a.grids.size(); ++g) {
     const auto& ga = a.grids[g];
     r.orphans += ga.count(CellStatus::orphan);
@@ -50,7 +64,8 @@ Check check(const OversetAssembler& asmb, const Assembly& a, const std::vector<G
     for (std::size_t c = 0; c < ga.status.size(); ++c) {
       if (ga.status[c] != CellStatus::fringe) continue;
       ++r.fringe;
-      double sum = 0, value = 0, sum_abs = 0, value_abs = 0;
+      double sum = 0, value = 0, sum_abs = 0, value_abs = 0, negative = 0, extent = 0;
+      const Eigen::Vector3d xc = asmb.centre(static_cast<int>(g), static_cast<int>(c));
       for (int k = ga.stencil_offsets[c]; k < ga.stencil_offsets[c + 1]; ++k) {
         const auto ku = static_cast<std::size_t>(k);
         const int dg = ga.stencil_grids[ku], d = ga.stencil_cells[ku];
@@ -62,10 +77,17 @@ Check check(const OversetAssembler& asmb, const Assembly& a, const std::vector<G
         sum_abs += std::abs(w);
         value += w * fd;
         value_abs += std::abs(w * fd);
+        negative += std::max(0.0, -w);
+        extent = std::max(extent, (asmb.centre(dg, d) - xc).norm());
       }
-      const double exact = f(asmb.centre(static_cast<int>(g), static_cast<int>(c)));
+      const double exact = f(xc);
+      if (ga.chained[c] != 0 || ga.fallback[c] != 0)
+        r.worst_negative_composed = std::max(r.worst_negative_composed, negative);
+      else
+        r.worst_negative = std::max(r.worst_negative, negative);
       r.largest_stencil =
           std::max(r.largest_stencil, ga.stencil_offsets[c + 1] - ga.stencil_offsets[c]);
+      r.donors += ga.stencil_offsets[c + 1] - ga.stencil_offsets[c];
       if (ga.fallback[c]) {
         ++r.fallbacks;
         double nearest = std::numeric_limits<double>::infinity();
@@ -88,16 +110,36 @@ Check check(const OversetAssembler& asmb, const Assembly& a, const std::vector<G
       const double n = ga.stencil_offsets[c + 1] - ga.stencil_offsets[c];
       const double bound = std::max(1024.0, n * n) * eps;
       r.worst_sum = std::max(r.worst_sum, std::abs(sum - 1) / (bound * sum_abs));
-      r.worst_linear = std::max(r.worst_linear, std::abs(value - exact) / (bound * value_abs));
+      if (std::abs(value - exact) > bound * value_abs) {
+        ++r.inexact;
+        r.worst_inexact =
+            std::max(r.worst_inexact, std::abs(value - exact) / (gradient.norm() * extent));
+      }
     }
   }
   return r;
 }
+
+// What every assembly must give (docs/mesher.md, "Donors"): no orphan, active donors, weights
+// summing to one to round-off, an interpolation that amplifies by at most 1 + 2 * 0.1 (1.2^2 for
+// a stencil composed of two: a chain through another fringe cell's stencil), exact for linear
+// fields but for the few fringe centres beyond their donors' centres, and those within a share
+// of the field's change over the stencil. Measured on the coarse sweep (session 18): 4.2 % to
+// 7.2 % inexact, the worst 0.24 of the change; composed negative weight at most 0.155.
+void expect_valid(const Check& r, const std::string& label) {
+  EXPECT_EQ(r.orphans, 0) << label;
+  EXPECT_EQ(r.bad_donor_status, 0) << label;
+  EXPECT_LE(r.worst_sum, 1.0) << label;
+  EXPECT_LE(r.worst_negative, 0.1 + 1e-12) << label;
+  EXPECT_LE(r.worst_negative_composed, 0.22 + 1e-12) << label;
+  EXPECT_LT(r.inexact, r.fringe / 12) << label;
+  EXPECT_LT(r.worst_inexact, 0.3) << label;
+}
 }  // namespace
 
-// Deflections -35 .. 35 deg in 5 deg steps, all fins together: no orphans, donors are active
-// cells, and weights sum to one and reproduce a linear field to round-off. No fringe cell takes
-// a fallback (extrapolating) stencil: every one has a containing cell, active or a relay
+// Deflections -35 .. 35 deg in 5 deg steps, all fins together: valid stencils (expect_valid)
+// and their sizes printed (the implicit coupling's matrix entries grow with them). No fringe cell
+// takes a fallback (extrapolating) stencil: every one has a containing cell, active or a relay
 // (docs/mesher.md).
 void sweep(const char* preset, double max_fallback_share) {
   const MeshSettings settings = mesh_preset(preset, remus());
@@ -110,17 +152,16 @@ void sweep(const char* preset, double max_fallback_share) {
     const Check r = check(asmb, a, geo);
     std::printf(
         "%s %+3d deg: %d fringe (%d chained, %d with fallback donors, nearest donor centre at "
-        "most %.2f cell sizes away), %d orphans, |sum w - 1| and linear error at most %.2f and "
-        "%.2f of their round-off bounds, stencils of at most %d cells (%.2f s)\n",
+        "most %.2f cell sizes away), %d orphans, |sum w - 1| at most %.2f of its round-off bound, "
+        "%d not exact for linear fields (worst %.3f of the change over the stencil), negative "
+        "weight at most %.3f (%.3f composed), stencils of %.1f cells on average, at most %d "
+        "(%.2f s)\n",
         preset, deg, r.fringe, r.chained, r.fallbacks, r.farthest_fallback, r.orphans, r.worst_sum,
-        r.worst_linear, r.largest_stencil, a.seconds);
+        r.inexact, r.worst_inexact, r.worst_negative, r.worst_negative_composed,
+        static_cast<double>(r.donors) / r.fringe, r.largest_stencil, a.seconds);
     EXPECT_GT(r.fringe, 0) << deg;
     EXPECT_LE(r.fallbacks, max_fallback_share * r.fringe) << deg;
-    EXPECT_EQ(r.orphans, 0) << deg;
-    EXPECT_EQ(r.bad_donor_status, 0) << deg;
-    EXPECT_LE(r.worst_sum, 1.0) << deg;
-    EXPECT_LE(r.worst_linear, 1.0) << deg;
-    EXPECT_LE(r.largest_stencil, 16 * 16) << deg;  // a chain of two stencils of at most 16
+    expect_valid(r, std::to_string(deg) + " deg");
   }
 }
 
@@ -142,7 +183,7 @@ int differing_statuses(const OversetAssembler& asmb, const Assembly& full, const
 }
 
 // An incremental update from the fins' present angles to `next` against a full assembly at
-// `next`: the same statuses, fewer than half the cells examined, and valid, exact stencils. The
+// `next`: the same statuses, fewer than half the cells examined, and valid stencils. The
 // update runs first, so that the full assembly leaves the fins (and the assembler's per-cell
 // state) at `next` for the following update.
 Assembly update_and_compare(OversetAssembler& asmb, const Assembly& previous,
@@ -157,11 +198,7 @@ Assembly update_and_compare(OversetAssembler& asmb, const Assembly& previous,
       label, full.cells_visited, full.seconds, inc.cells_visited, inc.seconds, differ);
   EXPECT_EQ(differ, 0) << label;
   EXPECT_LT(inc.cells_visited, full.cells_visited / 2) << label;
-  const Check r = check(asmb, inc, geo);
-  EXPECT_EQ(r.orphans, 0) << label;
-  EXPECT_EQ(r.bad_donor_status, 0) << label;
-  EXPECT_LE(r.worst_sum, 1.0) << label;
-  EXPECT_LE(r.worst_linear, 1.0) << label;
+  expect_valid(check(asmb, inc, geo), label);
   return inc;
 }
 
@@ -298,7 +335,7 @@ TEST(OversetSlow, MediumAndFineUpdatesMatchFullAssemblies) {
   chained_updates("fine", 1);
 }
 #else
-TEST(Overset, CoarseFinSweepHasNoOrphansAndExactLinearInterpolation) {
+TEST(Overset, CoarseFinSweepHasNoOrphansAndBoundedWeights) {
   sweep("coarse", 0.0);
 }
 
