@@ -73,6 +73,12 @@ TEST(FV_SUITE, GalileanCylinder) {
 TEST(FV_SUITE, PitchingFoil) {
   run("pitching-foil");
 }
+// The REMUS 100 coarse overset system, straight at 1.54 m/s then every fin turning at 30 deg/s
+// (issue 17; quick: 10 + 20 steps, about 16 s; full: 2 s + 1 s, 1,500 steps): every step done,
+// mass conserved, no orphan in any update; full: the hull's drag settled before the turn.
+TEST(FV_SUITE, RemusOverset) {
+  run("remus-overset");
+}
 TEST(FV_SUITE, SchaeferTurek2d2Shedding) {
   run("schaefer-turek-2d2");
 }

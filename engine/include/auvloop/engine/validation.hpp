@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "auvloop/engine/fv/operators.hpp"
+#include "auvloop/engine/fv/pimple.hpp"
 #include "auvloop/engine/turbulence/sst_model.hpp"
 #include "auvloop/mesher/cylinder_grid.hpp"
 #include "auvloop/mesher/flat_plate_grid.hpp"
@@ -158,6 +159,24 @@ struct PitchingFoilResult {
 };
 PitchingFoilResult pitching_foil(const mesher::FoilOversetSpec& g, bool overset, double amplitude,
                                  double omega, double dt, double end_time);
+
+// remus-overset (remus_overset.cpp): the REMUS 100 overset system of a mesh preset (hull, four
+// fin grids, background) in the flow, laminar (nu = 1e-6 m^2/s), the body moving at `speed`
+// (m/s) straight ahead through water at rest from an impulsive start: `straight` seconds with
+// the fins at rest, then `turning` seconds with every fin turning at `fin_rate` (rad/s), steps
+// of dt. Per step: the continuity error over the active cells, the largest interface flux, the
+// hull's force, the re-assembly's time.
+struct RemusOversetResult {
+  int cells = 0, steps = 0, planned_steps = 0;
+  std::string failure;  // empty, or the DivergenceError of the step that failed
+  double max_continuity = 0, max_interface_flux = 0, max_courant = 0;
+  int status_changes = 0, uncovered_cells = 0;
+  double seconds = 0, assembly_seconds = 0;
+  std::vector<double> t, drag;  // hull force along -x (N per unit density, m^4/s^2)
+};
+RemusOversetResult remus_overset(const std::string& preset, double speed, double dt,
+                                 double straight, double turning, double fin_rate,
+                                 fv::OversetCoupling coupling);
 
 // Schaefer-Turek 2D-2 (Re = 100, periodic shedding) from rest to end_time with BDF2 at fixed dt;
 // St, cD max and cL max over the last `measured_periods` periods of cL (upward crossings of its

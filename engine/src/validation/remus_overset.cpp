@@ -1,0 +1,97 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// remus-overset (issue 17; validation.hpp): the REMUS 100 overset system in the flow, the
+// acceptance run of the moving-overset solver.
+//   1. the vehicle's grid system of a mesh preset, assembled at zero deflection
+//      (fv::VehicleOverset); laminar, the body moving at `speed` along +x through water at rest
+//      (the far field on the background's outer faces, every wall moving with its grid);
+//   2. `straight` seconds with the fins at rest, then `turning` seconds with each fin's
+//      deflection growing by fin_rate dt a step: the mesher's incremental update at the new
+//      deflections (an orphan throws: no fringe cell is ever without active donors), each fin's
+//      axes turning about its post at fin_rate (VehicleOverset::motions), Pimple::step carrying
+//      the fields onto the new statuses;
+//   3. per step the continuity error over the active cells and the interface flux (Pimple's
+//      report) and the hull's force (fv::patch_force on "hull/hull"); a DivergenceError ends the
+//      run and is reported, with the steps done.
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include "auvloop/engine/fv/forces.hpp"
+#include "auvloop/engine/fv/vehicle_overset.hpp"
+#include "auvloop/engine/validation.hpp"
+#include "auvloop/geometry/vehicle.hpp"
+#include "auvloop/mesher/mesh_settings.hpp"
+
+namespace auvloop::engine::validation {
+
+RemusOversetResult remus_overset(const std::string& preset, double speed, double dt,
+                                 double straight, double turning, double fin_rate,
+                                 fv::OversetCoupling coupling) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto seconds_since = [](std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+  };
+  const auto vehicle = geometry::preset_vehicle("remus100");  // 1.
+  fv::VehicleOverset sys(mesher::build_grid_system(vehicle, mesher::mesh_preset(preset, vehicle)),
+                         vehicle);
+  const auto& mesh = sys.mesh();
+  fv::PimpleSettings s;
+  s.nu = 1e-6;
+  s.dt = dt;
+  s.outer_iterations = 3;
+  s.convection = fv::Convection::upwind;  // van_leer_skew diverges at the hull's tail face
+  s.overset_coupling = coupling;
+  s.max_courant = 500;  // the fin roots' tiny cells: a guard against divergence only
+  fv::Pimple flow(mesh, s);
+  flow.set_overset(&sys.overset());
+  for (const auto& patch : mesh.grid().patches) {
+    if (patch.type == mesher::PatchType::wall) {
+      flow.wall(patch.name);
+    } else if (patch.name.rfind("background/", 0) == 0 &&
+               patch.type != mesher::PatchType::overset) {
+      flow.far_field(patch.name);
+    }
+  }
+  fv::FrameMotion body;
+  body.velocity = Eigen::Vector3d(speed, 0, 0);
+  const auto fins = static_cast<std::size_t>(sys.fins());
+  std::vector<double> deflection = sys.deflections();
+  const std::vector<double> at_rest(fins, 0.0), turning_rates(fins, fin_rate);
+  flow.set_motion(sys.motions(body, at_rest));
+  flow.initialise();
+  RemusOversetResult r;
+  r.cells = mesh.cells();
+  const int straight_steps = static_cast<int>(std::lround(straight / dt));
+  r.planned_steps = straight_steps + static_cast<int>(std::lround(turning / dt));
+  for (int n = 0; n < r.planned_steps; ++n) {  // 2.
+    const bool turn = n >= straight_steps;
+    try {
+      if (turn) {
+        for (double& d : deflection) d += fin_rate * dt;
+        const auto ta = std::chrono::steady_clock::now();
+        sys.set_fins(deflection);
+        r.assembly_seconds += seconds_since(ta);
+      }
+      flow.set_motion(sys.motions(body, turn ? turning_rates : at_rest));
+      const auto rep = flow.step();  // 3.
+      r.max_continuity = std::max(r.max_continuity, rep.continuity_error);
+      r.max_interface_flux = std::max(r.max_interface_flux, rep.interface_flux);
+      r.max_courant = std::max(r.max_courant, rep.max_courant);
+      r.status_changes += rep.status_changes;
+      r.uncovered_cells += rep.uncovered_cells;
+    } catch (const fv::DivergenceError& e) {
+      r.failure = e.what();
+      break;
+    } catch (const std::invalid_argument& e) {  // an orphan in the update
+      r.failure = e.what();
+      break;
+    }
+    r.steps = n + 1;
+    r.t.push_back(flow.time());
+    r.drag.push_back(-fv::patch_force(flow, fv::VehicleOverset::hull_wall()).total().x());
+  }
+  r.seconds = seconds_since(t0);
+  return r;
+}
+
+}  // namespace auvloop::engine::validation
