@@ -16,6 +16,7 @@
 
 #include "diagnosis.hpp"
 #include "parallel.hpp"
+#include "stopwatch.hpp"
 
 namespace auvloop::engine::fv {
 
@@ -64,9 +65,11 @@ void Pimple::assemble_momentum(bool final) {
     // Overset (overset.hpp, step 1): fringe rows the donors' interpolation of U, hole rows their
     // value, the grid velocity (set_hole_velocity).
     if (implicit_overset()) {  // overset_implicit.cpp
+      const ScopedSeconds clock(overset_seconds_);
       overset_->couple(eq, {U.c[0].cells, U.c[1].cells, U.c[2].cells}, i, momentum_.extra[i],
                        fixed_);
     } else if (overset_ != nullptr) {
+      const ScopedSeconds clock(overset_seconds_);
       overset_->fixed_values({U.c[0].cells, U.c[1].cells, U.c[2].cells}, i, fixed_);
       eq.fix_values(mesh_, overset_->fixed_cells(), fixed_);
     }
@@ -182,6 +185,7 @@ void Pimple::solve_momentum(StepReport& r, bool first) {
     U.c[i].update_boundary(mesh_);
   }
   if (implicit_overset()) {  // the fringe cells from their donors (overset_implicit.cpp, 3.)
+    const ScopedSeconds clock(overset_seconds_);
     overset_->apply(std::array<std::span<double>, 3>{U.c[0].cells, U.c[1].cells, U.c[2].cells});
     for (std::size_t i = 0; i < 3; ++i)
       if (active_[i]) U.c[i].update_boundary(mesh_);

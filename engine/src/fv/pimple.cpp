@@ -15,6 +15,7 @@
 #include <limits>
 #include <numbers>
 #include <stdexcept>
+#include <tuple>
 
 #include <fmt/format.h>
 
@@ -22,6 +23,7 @@
 #include "diagnosis.hpp"
 #include "parallel.hpp"
 #include "scratch.hpp"
+#include "stopwatch.hpp"
 
 namespace auvloop::engine::fv {
 
@@ -185,8 +187,13 @@ StepReport Pimple::step() {
   if (!body_force.empty() && body_force.size() != static_cast<std::size_t>(mesh_.cells()))
     throw std::invalid_argument(fmt::format("Pimple: body_force has {} entries for {} cells",
                                             body_force.size(), mesh_.cells()));
-  const auto [status_changes, uncovered_cells] = follow_assembly();  // overset re-assembly
-  plan_implicit();
+  overset_seconds_ = 0;
+  int status_changes = 0, uncovered_cells = 0;
+  {
+    const ScopedSeconds clock(overset_seconds_);
+    std::tie(status_changes, uncovered_cells) = follow_assembly();  // overset re-assembly
+    plan_implicit();
+  }
   // Copy assignments into kept storage: no allocation after the first step.
   good_.U = U;
   good_.p = p;
@@ -263,9 +270,12 @@ StepReport Pimple::step() {
                               s[0] += std::abs(d[static_cast<std::size_t>(c)]) * mesh_.volume(c);
                         })[0] *
         dt_ / (overset_ == nullptr ? mesh_.total_volume() : overset_->active_volume());
-    if (overset_ != nullptr)
+    if (overset_ != nullptr) {
+      const ScopedSeconds clock(overset_seconds_);
       for (double q : interface_flux(*overset_, mesh_, phi))
         r.interface_flux = std::max(r.interface_flux, std::abs(q));
+    }
+    r.seconds_overset = overset_seconds_;
     r.seconds_other = seconds_since(t0);
     r.seconds_gradient = mesh_.gradient_seconds() - gradient_seconds;
     check(r);

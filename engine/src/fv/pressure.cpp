@@ -17,6 +17,7 @@
 #include "diagnosis.hpp"
 #include "parallel.hpp"
 #include "scratch.hpp"
+#include "stopwatch.hpp"
 
 namespace auvloop::engine::fv {
 
@@ -145,6 +146,7 @@ void Pimple::correct_pressure(StepReport& r, bool first, bool final) {
   // flux at an active-fringe face treats it as an active cell whose U is the interpolated one;
   // hole cells (fixed to zero) keep HbyA = 0.
   if (overset_ != nullptr) {
+    const ScopedSeconds clock(overset_seconds_);
     auto& gp = W.gp;
     gp.resize(n);
     mesh_.gradient(p.cells, p.boundary, gp);
@@ -200,9 +202,11 @@ void Pimple::correct_pressure(StepReport& r, bool first, bool final) {
                          corr == settings_.non_orthogonal_correctors;
     if (balance && !shift_current_) W.p_free = eq;  // only the response reads it
     if (implicit_overset()) {                       // overset_implicit.cpp
+      const ScopedSeconds clock(overset_seconds_);
       overset_->couple(eq, p.cells, std::numeric_limits<double>::quiet_NaN(), {}, pressure_extra_,
                        fixed_);
     } else if (overset_ != nullptr) {
+      const ScopedSeconds clock(overset_seconds_);
       overset_->fixed_values(p.cells, std::numeric_limits<double>::quiet_NaN(), fixed_);
       eq.fix_values(mesh_, overset_->fixed_cells(), fixed_);
     }
@@ -217,10 +221,16 @@ void Pimple::correct_pressure(StepReport& r, bool first, bool final) {
     });
     if (first && corr == 0) r.pressure_residual = s.initial_residual;
     r.pressure_iterations += s.iterations;
-    if (implicit_overset()) overset_->apply(p.cells, std::numeric_limits<double>::quiet_NaN());
+    if (implicit_overset()) {
+      const ScopedSeconds clock(overset_seconds_);
+      overset_->apply(p.cells, std::numeric_limits<double>::quiet_NaN());
+    }
     pressure_flux(p.cells, corrected, phi);
     // Overset: the open components' interface flux to zero (overset_mass.cpp), last corrector.
-    if (balance) balance_overset_mass(W.p_free, corrected, r);
+    if (balance) {
+      const ScopedSeconds clock(overset_seconds_);
+      balance_overset_mass(W.p_free, corrected, r);
+    }
   }
   if (!final && settings_.relax_p < 1) {
     parallel_for(mesh_.cells(), [&](int c) {
@@ -240,6 +250,7 @@ void Pimple::correct_pressure(StepReport& r, bool first, bool final) {
     });
   }
   if (overset_ != nullptr) {  // overset, step 4 (a turned donor's vector needs all components)
+    const ScopedSeconds clock(overset_seconds_);
     overset_->apply(std::array<std::span<double>, 3>{U.c[0].cells, U.c[1].cells, U.c[2].cells});
     for (std::size_t i = 0; i < 3; ++i) set_hole_velocity(i);
   }

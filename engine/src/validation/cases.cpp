@@ -517,8 +517,13 @@ Result run_remus_overset(bool quick) {
   constexpr double kSpeed = 1.54, kDt = 2e-3;
   const double rate = 30 * std::numbers::pi / 180;
   const double straight = quick ? 10 * kDt : 2.0, turning = quick ? 20 * kDt : 1.0;
-  const auto r =
-      remus_overset("coarse", kSpeed, kDt, straight, turning, rate, fv::OversetCoupling::lagged);
+  RemusOversetRun run;
+  run.speed = kSpeed;
+  run.dt = kDt;
+  run.straight = straight;
+  run.turning = turning;
+  run.fin_rate = rate;
+  const auto r = remus_overset(run);
   const double swept = kSpeed * std::numbers::pi * 0.25 * 0.19 * 0.19;  // m^3/s, REMUS D = 0.19 m
   res.notes.push_back(fmt::format(
       "coarse: {} cells, {} of {} steps of {} s ({} s straight, {} s with the fins turning at 30 "

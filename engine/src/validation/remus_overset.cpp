@@ -4,17 +4,18 @@
 //   1. the vehicle's grid system of a mesh preset, assembled at zero deflection
 //      (fv::VehicleOverset); laminar, the body moving at `speed` along +x through water at rest
 //      (the far field on the background's outer faces, every wall moving with its grid);
-//   2. `straight` seconds with the fins at rest, then `turning` seconds with each fin's
-//      deflection growing by fin_rate dt a step: the mesher's incremental update at the new
-//      deflections (an orphan throws: no fringe cell is ever without active donors), each fin's
-//      axes turning about its post at fin_rate (VehicleOverset::motions), Pimple::step carrying
-//      the fields onto the new statuses;
+//   2. `straight` seconds with the fins at rest, then `turning` seconds with the turning fin's
+//      (or every fin's) deflection growing by fin_rate dt a step: the mesher's incremental
+//      update at the new deflections (an orphan throws: no fringe cell is ever without active
+//      donors), the fin's axes turning about its post at fin_rate (VehicleOverset::motions),
+//      Pimple::step carrying the fields onto the new statuses;
 //   3. per step the continuity error over the active cells and the interface flux (Pimple's
 //      report) and the hull's force (fv::patch_force on "hull/hull"); a DivergenceError ends the
 //      run and is reported, with the steps done.
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include "auvloop/engine/fv/forces.hpp"
 #include "auvloop/engine/fv/vehicle_overset.hpp"
@@ -24,23 +25,24 @@
 
 namespace auvloop::engine::validation {
 
-RemusOversetResult remus_overset(const std::string& preset, double speed, double dt,
-                                 double straight, double turning, double fin_rate,
-                                 fv::OversetCoupling coupling) {
+RemusOversetResult remus_overset(const RemusOversetRun& run) {
   const auto t0 = std::chrono::steady_clock::now();
   const auto seconds_since = [](std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
   };
   const auto vehicle = geometry::preset_vehicle("remus100");  // 1.
-  fv::VehicleOverset sys(mesher::build_grid_system(vehicle, mesher::mesh_preset(preset, vehicle)),
-                         vehicle);
+  fv::VehicleOverset sys(
+      mesher::build_grid_system(vehicle, mesher::mesh_preset(run.preset, vehicle)), vehicle);
   const auto& mesh = sys.mesh();
+  const auto fins = static_cast<std::size_t>(sys.fins());
+  if (run.turning_fin < -1 || run.turning_fin >= sys.fins())
+    throw std::invalid_argument("remus_overset: no fin " + std::to_string(run.turning_fin));
   fv::PimpleSettings s;
   s.nu = 1e-6;
-  s.dt = dt;
-  s.outer_iterations = 3;
+  s.dt = run.dt;
+  s.outer_iterations = run.outer_iterations;
   s.convection = fv::Convection::upwind;  // van_leer_skew diverges at the hull's tail face
-  s.overset_coupling = coupling;
+  s.overset_coupling = run.coupling;
   s.max_courant = 500;  // the fin roots' tiny cells: a guard against divergence only
   fv::Pimple flow(mesh, s);
   flow.set_overset(&sys.overset());
@@ -53,32 +55,40 @@ RemusOversetResult remus_overset(const std::string& preset, double speed, double
     }
   }
   fv::FrameMotion body;
-  body.velocity = Eigen::Vector3d(speed, 0, 0);
-  const auto fins = static_cast<std::size_t>(sys.fins());
+  body.velocity = Eigen::Vector3d(run.speed, 0, 0);
   std::vector<double> deflection = sys.deflections();
-  const std::vector<double> at_rest(fins, 0.0), turning_rates(fins, fin_rate);
+  const std::vector<double> at_rest(fins, 0.0);
+  std::vector<double> rates(fins, 0.0);
+  for (std::size_t k = 0; k < fins; ++k)
+    if (run.turning_fin < 0 || static_cast<std::size_t>(run.turning_fin) == k)
+      rates[k] = run.fin_rate;
   flow.set_motion(sys.motions(body, at_rest));
   flow.initialise();
   RemusOversetResult r;
   r.cells = mesh.cells();
-  const int straight_steps = static_cast<int>(std::lround(straight / dt));
-  r.planned_steps = straight_steps + static_cast<int>(std::lround(turning / dt));
+  const int straight_steps = static_cast<int>(std::lround(run.straight / run.dt));
+  r.planned_steps = straight_steps + static_cast<int>(std::lround(run.turning / run.dt));
   for (int n = 0; n < r.planned_steps; ++n) {  // 2.
     const bool turn = n >= straight_steps;
     try {
+      double reassembly = 0;
       if (turn) {
-        for (double& d : deflection) d += fin_rate * dt;
+        for (std::size_t k = 0; k < fins; ++k) deflection[k] += rates[k] * run.dt;
         const auto ta = std::chrono::steady_clock::now();
         sys.set_fins(deflection);
-        r.assembly_seconds += seconds_since(ta);
+        reassembly = seconds_since(ta);
+        r.assembly_seconds += reassembly;
       }
-      flow.set_motion(sys.motions(body, turn ? turning_rates : at_rest));
+      flow.set_motion(sys.motions(body, turn ? rates : at_rest));
+      const auto ts = std::chrono::steady_clock::now();
       const auto rep = flow.step();  // 3.
+      const double step_seconds = seconds_since(ts);
       r.max_continuity = std::max(r.max_continuity, rep.continuity_error);
       r.max_interface_flux = std::max(r.max_interface_flux, rep.interface_flux);
       r.max_courant = std::max(r.max_courant, rep.max_courant);
       r.status_changes += rep.status_changes;
       r.uncovered_cells += rep.uncovered_cells;
+      if (run.on_step) run.on_step(rep, reassembly, step_seconds);
     } catch (const fv::DivergenceError& e) {
       r.failure = e.what();
       break;

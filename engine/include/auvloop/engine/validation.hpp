@@ -163,9 +163,21 @@ PitchingFoilResult pitching_foil(const mesher::FoilOversetSpec& g, bool overset,
 // remus-overset (remus_overset.cpp): the REMUS 100 overset system of a mesh preset (hull, four
 // fin grids, background) in the flow, laminar (nu = 1e-6 m^2/s), the body moving at `speed`
 // (m/s) straight ahead through water at rest from an impulsive start: `straight` seconds with
-// the fins at rest, then `turning` seconds with every fin turning at `fin_rate` (rad/s), steps
-// of dt. Per step: the continuity error over the active cells, the largest interface flux, the
-// hull's force, the re-assembly's time.
+// the fins at rest, then `turning` seconds with one fin or every fin turning at `fin_rate`
+// (rad/s), steps of dt. Per step: the continuity error over the active cells, the largest
+// interface flux, the hull's force, the re-assembly's time; `on_step` sees every step's report,
+// its re-assembly's and its Pimple::step's wall-clock seconds (progress, benchmarks).
+struct RemusOversetRun {
+  std::string preset = "coarse";
+  double speed = 1.54, dt = 2e-3;        // m/s, s
+  double straight = 2.0, turning = 1.0;  // s
+  double fin_rate = 0.5235987755982988;  // rad/s (30 deg/s)
+  int turning_fin = -1;                  // the fin that turns, or -1: every fin
+  int outer_iterations = 3;
+  fv::OversetCoupling coupling = fv::OversetCoupling::lagged;
+  std::function<void(const fv::StepReport&, double reassembly_seconds, double step_seconds)>
+      on_step;
+};
 struct RemusOversetResult {
   int cells = 0, steps = 0, planned_steps = 0;
   std::string failure;  // empty, or the DivergenceError of the step that failed
@@ -174,9 +186,7 @@ struct RemusOversetResult {
   double seconds = 0, assembly_seconds = 0;
   std::vector<double> t, drag;  // hull force along -x (N per unit density, m^4/s^2)
 };
-RemusOversetResult remus_overset(const std::string& preset, double speed, double dt,
-                                 double straight, double turning, double fin_rate,
-                                 fv::OversetCoupling coupling);
+RemusOversetResult remus_overset(const RemusOversetRun& run);
 
 // Schaefer-Turek 2D-2 (Re = 100, periodic shedding) from rest to end_time with BDF2 at fixed dt;
 // St, cD max and cL max over the last `measured_periods` periods of cL (upward crossings of its

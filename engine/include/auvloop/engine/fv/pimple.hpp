@@ -97,6 +97,12 @@ struct StepReport {
   // Parts of the above: momentum assembly (in seconds_momentum) and every cell-gradient
   // evaluation (deferred corrections, grad p; spread over all three).
   double seconds_assembly = 0, seconds_gradient = 0;
+  // Overset meshes: the overset parts of the above (the status carry-over after a re-assembly,
+  // the fringe rows: fixed values or their elimination into the active rows, the fringe
+  // interpolations and HbyA, the mass balance with its extra pressure solves, the interface
+  // flux). Not in it: the re-assembly itself (the driver's, before the step) and, with implicit
+  // coupling, the larger solve of the coupled system.
+  double seconds_overset = 0;
   // The turbulence model's equations (none: zero), summed over the outer iterations, and their
   // wall-clock time.
   TurbulenceReport turbulence;
@@ -278,8 +284,9 @@ class Pimple {
   double dt_old_ = 0;  // the previous step's (0 before the first step)
   TurbulenceModel* turbulence_ = nullptr;
   const Overset* overset_ = nullptr;
-  int reference_cell_ = 0;     // where p = 0 when no patch fixes it (the first active cell)
-  std::vector<double> fixed_;  // overset: the fixed cells' values (scratch)
+  int reference_cell_ = 0;      // where p = 0 when no patch fixes it (the first active cell)
+  std::vector<double> fixed_;   // overset: the fixed cells' values (scratch)
+  double overset_seconds_ = 0;  // this step's StepReport::seconds_overset so far
   // Implicit overset coupling: the pressure equation's entries beyond the face pattern, and the
   // Overset generation the coupled multigrid was planned for (plan_implicit).
   ExtraEntries pressure_extra_;

@@ -1,0 +1,141 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The overset share of a time step on the REMUS 100 system (issue 17: at most 15 % on coarse),
+// and the explicit against the implicit coupling on it. Not a test: nothing is asserted.
+//   1. validation::remus_overset (the remus-overset case's driver): laminar, the body at
+//      1.54 m/s from an impulsive start, --straight steps with the fins at rest, then --steps
+//      steps with one fin (--fin K) or every fin (--fin -1) turning at 30 deg/s;
+//   2. per turning step: the re-assembly (the mesher's incremental update, before the step),
+//      Pimple::step's wall clock and its overset part (StepReport::seconds_overset: status
+//      carry-over, fringe rows, interpolation, mass balance, interface flux);
+//   3. the share = (re-assembly + overset part) / (re-assembly + step), the median and the sum
+//      over the turning steps; with the convergence figures of a step (initial momentum residual
+//      of the last outer iteration, pressure iterations) and the mass figures (continuity error,
+//      interface flux), per coupling and thread count in turn, in one process: the ratios of one
+//      run are at the same machine load.
+//   bench_overset [--preset coarse] [--straight 5] [--steps 20] [--fin 0] [--dt 0.002]
+//                 [--coupling explicit,implicit] [--threads 1,2] [--outer 3]
+#include <algorithm>
+#include <cstdio>
+#include <numbers>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <tbb/global_control.h>
+
+#include "auvloop/engine/validation.hpp"
+
+using namespace auvloop;
+namespace fv = engine::fv;
+
+namespace {
+std::vector<std::string> split(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream in(s);
+  for (std::string item; std::getline(in, item, ',');)
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+struct Turning {  // the turning steps' figures of one run
+  std::vector<double> share, step, reassembly, overset, residual;
+  std::vector<double> pressure_iterations;
+  double continuity = 0, interface_flux = 0;
+};
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "The overset share of a REMUS time step with fins turning at 30 deg/s, per coupling and "
+      "thread count (issue 17)"};
+  engine::validation::RemusOversetRun base;
+  int straight_steps = 5, turning_steps = 20;
+  std::string couplings = "explicit,implicit", threads = "1,2";
+  base.turning_fin = 0;
+  app.add_option("--preset", base.preset, "Mesh preset")->capture_default_str();
+  app.add_option("--straight", straight_steps, "Steps with the fins at rest first")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--steps", turning_steps, "Steps with the fin(s) turning (measured)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  app.add_option("--fin", base.turning_fin, "The fin that turns (0-3), or -1 for every fin")
+      ->capture_default_str()
+      ->check(CLI::Range(-1, 3));
+  app.add_option("--dt", base.dt, "Time step (s)")->capture_default_str()->check(
+      CLI::PositiveNumber);
+  app.add_option("--outer", base.outer_iterations, "Outer iterations a step")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  app.add_option("--coupling", couplings, "Comma-separated: explicit, implicit")
+      ->capture_default_str();
+  app.add_option("--threads", threads, "Comma-separated thread counts")->capture_default_str();
+  CLI11_PARSE(app, argc, argv);
+  base.straight = straight_steps * base.dt;
+  base.turning = turning_steps * base.dt;
+  base.fin_rate = 30 * std::numbers::pi / 180;
+
+  std::printf("REMUS %s, fin %s turning at 30 deg/s, dt %g s, %d straight + %d turning steps, %d "
+              "outer iterations\n",
+              base.preset.c_str(),
+              base.turning_fin < 0 ? "(every)" : std::to_string(base.turning_fin).c_str(), base.dt,
+              straight_steps, turning_steps, base.outer_iterations);
+  for (const auto& coupling : split(couplings)) {
+    for (const auto& t : split(threads)) {
+      const int n_threads = std::stoi(t);
+      if (n_threads < 1) {
+        std::fprintf(stderr, "--threads: thread counts >= 1, got %s\n", t.c_str());
+        return 2;
+      }
+      tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
+                                static_cast<std::size_t>(n_threads));
+      auto run = base;
+      try {
+        run.coupling = fv::overset_coupling_from_string(coupling);
+      } catch (const std::invalid_argument& e) {
+        std::fprintf(stderr, "--coupling: %s\n", e.what());
+        return 2;
+      }
+      Turning m;
+      int step = 0;
+      run.on_step = [&](const fv::StepReport& r, double reassembly, double seconds) {
+        if (++step <= straight_steps) return;
+        m.share.push_back((reassembly + r.seconds_overset) / (reassembly + seconds));
+        m.step.push_back(reassembly + seconds);
+        m.reassembly.push_back(reassembly);
+        m.overset.push_back(r.seconds_overset);
+        m.residual.push_back(r.outer_residual);
+        m.pressure_iterations.push_back(r.pressure_iterations);
+        m.continuity = std::max(m.continuity, r.continuity_error);
+        m.interface_flux = std::max(m.interface_flux, r.interface_flux);
+      };
+      const auto result = engine::validation::remus_overset(run);
+      if (!result.failure.empty())
+        std::printf("  %s, %d threads: failed after %d steps: %s\n", coupling.c_str(), n_threads,
+                    result.steps, result.failure.c_str());
+      double total = 0, overset = 0;
+      for (std::size_t k = 0; k < m.step.size(); ++k) {
+        total += m.step[k];
+        overset += m.reassembly[k] + m.overset[k];
+      }
+      std::printf(
+          "  %-8s %d thread(s): s/step median %.3f (re-assembly %.3f, in-step overset %.3f); "
+          "overset share median %.1f %%, over the %zu steps %.1f %%; last outer momentum "
+          "residual median %.2e, pressure iterations median %.0f; continuity <= %.1e, "
+          "interface flux <= %.1e m^3/s\n",
+          coupling.c_str(), n_threads, median(m.step), median(m.reassembly), median(m.overset),
+          100 * median(m.share), m.step.size(), total > 0 ? 100 * overset / total : 0.0,
+          median(m.residual), median(m.pressure_iterations), m.continuity, m.interface_flux);
+      std::fflush(stdout);
+    }
+  }
+  return 0;
+}
