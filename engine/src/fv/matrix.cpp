@@ -8,6 +8,7 @@
 #include "auvloop/engine/fv/operators.hpp"
 
 #include "parallel.hpp"
+#include "scratch.hpp"
 
 namespace auvloop::engine::fv {
 
@@ -127,28 +128,36 @@ void Matrix::scale_rows(const Mesh& mesh, std::span<const double> factor) {
 
 void Matrix::fix_values(const Mesh& mesh, std::span<const int> cells,
                         std::span<const double> values) {
-  // Serial over the fixed cells (a wall's first cells: a small set); each fixed cell's row and
-  // its neighbours' couplings to it, in ascending face order.
-  const auto fixed = [&](std::size_t c) {
-    return std::binary_search(cells.begin(), cells.end(), static_cast<int>(c));
-  };
+  // 1. slot[c]: the position of cell c in `cells`, -1 for a free cell;
+  // 2. per cell in parallel, each writing only its own row and source: a fixed cell's row
+  //    becomes diag x = diag v (its off-diagonal entries 0); a free cell's couplings to fixed
+  //    neighbours move into its source, in the cell's face order (deterministic for any thread
+  //    count). The fixed set may be large (an overset mesh's fringe and hole cells).
+  const int n = mesh.cells();
   const int internal = mesh.internal_faces();
-  for (std::size_t i = 0; i < cells.size(); ++i) {
-    const auto c = static_cast<std::size_t>(cells[i]);
-    const double v = values[i];
-    for (int f : mesh.cell_faces(cells[i])) {
+  Scratch<int> slot(static_cast<std::size_t>(n));
+  parallel_for(n, [&](int c) { slot[static_cast<std::size_t>(c)] = -1; });
+  parallel_for(static_cast<int>(cells.size()), [&](int i) {
+    slot[static_cast<std::size_t>(cells[static_cast<std::size_t>(i)])] = i;
+  });
+  parallel_for(n, [&](int c) {
+    const auto s = static_cast<std::size_t>(c);
+    const int own = slot[s];
+    for (int f : mesh.cell_faces(c)) {
       if (f >= internal) continue;
       const auto fs = static_cast<std::size_t>(f);
-      const bool owner = static_cast<std::size_t>(mesh.owner(f)) == c;
+      const bool owner = mesh.owner(f) == c;
       const auto other = static_cast<std::size_t>(owner ? mesh.neighbour(f) : mesh.owner(f));
-      // The other cell's coefficient of c: lower if c is the owner (row N, column P), else upper.
-      double& to_c = owner ? lower[fs] : upper[fs];
-      if (!fixed(other)) source[other] -= to_c * v;
-      to_c = 0;
-      (owner ? upper[fs] : lower[fs]) = 0;  // c's own row
+      double& to_other = owner ? upper[fs] : lower[fs];  // row c, column other
+      if (own >= 0) {
+        to_other = 0;
+      } else if (slot[other] >= 0) {
+        source[s] -= to_other * values[static_cast<std::size_t>(slot[other])];
+        to_other = 0;
+      }
     }
-    source[c] = diag[c] * v;
-  }
+    if (own >= 0) source[s] = diag[s] * values[static_cast<std::size_t>(own)];
+  });
 }
 
 void Matrix::pull_values(std::span<const int> cells, std::span<const double> values,
