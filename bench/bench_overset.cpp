@@ -21,8 +21,8 @@
 #include <string>
 #include <vector>
 
-#include <CLI/CLI.hpp>
 #include <tbb/global_control.h>
+#include <CLI/CLI.hpp>
 
 #include "auvloop/engine/validation.hpp"
 
@@ -70,8 +70,9 @@ int main(int argc, char** argv) {
   app.add_option("--fin", base.turning_fin, "The fin that turns (0-3), or -1 for every fin")
       ->capture_default_str()
       ->check(CLI::Range(-1, 3));
-  app.add_option("--dt", base.dt, "Time step (s)")->capture_default_str()->check(
-      CLI::PositiveNumber);
+  app.add_option("--dt", base.dt, "Time step (s)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   app.add_option("--outer", base.outer_iterations, "Outer iterations a step")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
@@ -83,11 +84,12 @@ int main(int argc, char** argv) {
   base.turning = turning_steps * base.dt;
   base.fin_rate = 30 * std::numbers::pi / 180;
 
-  std::printf("REMUS %s, fin %s turning at 30 deg/s, dt %g s, %d straight + %d turning steps, %d "
-              "outer iterations\n",
-              base.preset.c_str(),
-              base.turning_fin < 0 ? "(every)" : std::to_string(base.turning_fin).c_str(), base.dt,
-              straight_steps, turning_steps, base.outer_iterations);
+  std::printf(
+      "REMUS %s, fin %s turning at 30 deg/s, dt %g s, %d straight + %d turning steps, %d "
+      "outer iterations\n",
+      base.preset.c_str(),
+      base.turning_fin < 0 ? "(every)" : std::to_string(base.turning_fin).c_str(), base.dt,
+      straight_steps, turning_steps, base.outer_iterations);
   for (const auto& coupling : split(couplings)) {
     for (const auto& t : split(threads)) {
       const int n_threads = std::stoi(t);
