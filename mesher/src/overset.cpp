@@ -114,6 +114,10 @@ struct OversetAssembler::Impl {
   // Per grid: how much farther a cell's own wall is than the cover band (0: no grid can cover
   // it; infinite for the background); fixed, since wall distances are taken in the grid's frame.
   std::vector<std::vector<double>> slack;
+  // Per grid: whether it moved since the previous assembly (update(): the fin grids whose
+  // deflection changed; every grid for a full assembly). Stencils between grids that did not move
+  // are kept (keep()).
+  std::vector<char> moved;
   std::unique_ptr<geometry::MyringProfile> profile;
   double cb_station = 0;
   // Scratch for stencil searches: per grid, the stamp of the search that last reached a cell.
@@ -129,15 +133,16 @@ struct OversetAssembler::Impl {
   }
 
   // Steps 1-3 for the given cells of every grid (all others keep their statuses).
-  // The depths are measured afresh over the whole of every component grid: a wall hole that
-  // moved changes them far beyond the cells whose statuses can change (up to the deepest a
-  // covered cell must lie, several of the largest hull cells).
-  void run(Assembly& a, const std::vector<std::vector<int>>& cells) {
+  // The depths are measured afresh over the whole of every component grid whose wall holes
+  // changed (`all_depths`: every one): a wall hole that moved changes them far beyond the cells
+  // whose statuses can change (up to the deepest a covered cell must lie, several of the largest
+  // hull cells). They depend on nothing else (the outer boundary is fixed in the grid's frame).
+  void run(Assembly& a, const std::vector<std::vector<int>>& cells, bool all_depths) {
     for (int g : order)
-      mark_wall_holes(g, cells[static_cast<std::size_t>(g)],
-                      a.grids[static_cast<std::size_t>(g)].status);
-    for (int g : order)
-      if (grids[static_cast<std::size_t>(g)].priority > 0) measure_depth(g);
+      if (mark_wall_holes(g, cells[static_cast<std::size_t>(g)],
+                          a.grids[static_cast<std::size_t>(g)].status) ||
+          all_depths)
+        if (grids[static_cast<std::size_t>(g)].priority > 0) measure_depth(g);
     for (int g : order)
       cover(g, cells[static_cast<std::size_t>(g)], a.grids[static_cast<std::size_t>(g)].status);
     // Fringe layers are redrawn on the cells given and `fringe_layers` rings around them: a
@@ -226,13 +231,18 @@ struct OversetAssembler::Impl {
   }
 
   // Step 1 for the cells given: wall holes (centre inside a solid other than the grid's own).
-  void mark_wall_holes(int g, const std::vector<int>& cells, std::vector<CellStatus>& st) {
+  // True if any cell's wall-hole mark changed.
+  bool mark_wall_holes(int g, const std::vector<int>& cells, std::vector<CellStatus>& st) {
     auto& holes = wall_hole[static_cast<std::size_t>(g)];
+    bool changed = false;
     for (int c : cells) {
       const auto cu = static_cast<std::size_t>(c);
-      holes[cu] = static_cast<char>(in_body(body(g, c), g) + 1);  // 0: not a wall hole
-      st[cu] = holes[cu] ? CellStatus::hole : CellStatus::active;
+      const auto hole = static_cast<char>(in_body(body(g, c), g) + 1);  // 0: not a wall hole
+      changed = changed || hole != holes[cu];
+      holes[cu] = hole;
+      st[cu] = hole ? CellStatus::hole : CellStatus::active;
     }
+    return changed;
   }
 
   // Step 2: a cell is covered by another component grid whose wall is nearer (by the fringe
@@ -434,12 +444,12 @@ struct OversetAssembler::Impl {
   }
 
   // Donor stencil of one fringe cell; false when no grid offers an active donor. First a cell of
-  // another grid that contains the centre and is active, in priority order; failing that, the
-  // nearest active cells round the containing cell in the grid where they extrapolate least (a
-  // lower-quality donor).
+  // another grid that contains the centre and is active, in priority order; failing that (and
+  // only `with_fallback`), the nearest active cells round the containing cell in the grid where
+  // they extrapolate least (a lower-quality donor).
   bool find_donor(int g, int c, int seed_grid, int seed_cell, const Assembly& a,
                   std::vector<int>& cells_out, std::vector<double>& w_out, int& donor_grid,
-                  int& donor_cell, bool& fallback) const {
+                  int& donor_cell, bool& fallback, bool with_fallback) const {
     const Eigen::Vector3d x = body(g, c);
     // (grid, cell) containing x, any status; or, when x lies in no cell of a grid but within its
     // box widened by the receiver's fringe depth (between a wall and its triangulation, just
@@ -477,6 +487,7 @@ struct OversetAssembler::Impl {
       }
       if (loc >= 0) located.emplace_back(h, loc);
     }
+    if (!with_fallback) return false;
     // Among the grids' fallback stencils, the one that extrapolates least: the smallest distance
     // from x to its nearest centre, in that cell's size (a donor-quality rule; the priority order
     // decides ties).
@@ -501,9 +512,6 @@ struct OversetAssembler::Impl {
     return fallback;
   }
 
-  // Donors for every fringe cell. With a previous assembly, a stencil is kept when its receiver
-  // was not re-examined (`redo` false), its donor grid did not move and its cells are still
-  // active; otherwise the search starts from the previous donor cell.
   // Assembly::warnings: whether a body's grid cuts or covers anything at all, and per grid that
   // a solid cuts, whether any of its holes is a covered cell.
   void warn(Assembly& a) const {
@@ -541,10 +549,17 @@ struct OversetAssembler::Impl {
     }
   }
 
+  // 4.-5. Donors for every fringe cell, then chains. With a previous assembly, a stencil is kept
+  // (keep()) or refitted (refit()) where it can be; otherwise the search starts from the previous
+  // donor cell. A receiver without an active containing cell is a fallback receiver; its fallback
+  // stencil is searched only if chain() finds no chained stencil for it (chaining reads no
+  // fallback stencil, only which receivers are fallbacks), since it costs tens of times more than
+  // a containing one.
   void connect(Assembly& a, const Assembly* previous,
                const std::vector<std::vector<char>>* redo) const {
     for (auto& ga : a.grids)  // an orphan is a fringe cell still looking for donors
       std::replace(ga.status.begin(), ga.status.end(), CellStatus::orphan, CellStatus::fringe);
+    std::vector<std::vector<int>> pending(grids.size());
     for (std::size_t g = 0; g < grids.size(); ++g) {
       auto& ga = a.grids[g];
       const auto n = static_cast<std::size_t>(grids[g].grid->cells);
@@ -576,15 +591,16 @@ struct OversetAssembler::Impl {
               refit(a, previous->grids[g], static_cast<int>(g), static_cast<int>(c), cells, w)) {
             ga.donor_grid[c] = previous->grids[g].donor_grid[c];
             ga.donor_cell[c] = previous->grids[g].donor_cell[c];
+            ga.fallback[c] = previous->grids[g].fallback[c];
             append(ga.donor_grid[c]);
           } else if (find_donor(static_cast<int>(g), static_cast<int>(c), seed_grid, seed_cell, a,
-                                cells, w, dg, dc, fb)) {
+                                cells, w, dg, dc, fb, false)) {
             ga.donor_grid[c] = dg;
             ga.donor_cell[c] = dc;
-            ga.fallback[c] = fb ? 1 : 0;
             append(dg);
           } else {
-            ga.status[c] = CellStatus::orphan;
+            ga.fallback[c] = 1;  // its stencil (empty for now) after chain()
+            pending[g].push_back(static_cast<int>(c));
           }
         } else if (ga.status[c] == CellStatus::fringe) {  // copy the previous stencil
           const auto& pg = previous->grids[g];
@@ -608,6 +624,29 @@ struct OversetAssembler::Impl {
       }
     }
     chain(a);
+    // The fallback stencils of the receivers left unchained; orphans where there is none.
+    for (std::size_t g = 0; g < grids.size(); ++g) {
+      auto& ga = a.grids[g];
+      std::map<int, std::vector<Entry>> fallbacks;
+      for (int c : pending[g]) {
+        const auto cu = static_cast<std::size_t>(c);
+        if (ga.chained[cu]) continue;
+        std::vector<int> cells;
+        std::vector<double> w;
+        int dg = -1, dc = -1;
+        bool fb = false;
+        if (!find_donor(static_cast<int>(g), c, -1, -1, a, cells, w, dg, dc, fb, true)) {
+          ga.status[cu] = CellStatus::orphan;
+          ga.fallback[cu] = 0;
+          continue;
+        }
+        ga.donor_grid[cu] = dg;
+        ga.donor_cell[cu] = dc;
+        auto& entries = fallbacks[c];
+        for (std::size_t i = 0; i < cells.size(); ++i) entries.push_back({dg, cells[i], w[i]});
+      }
+      if (!fallbacks.empty()) replace_stencils(ga, fallbacks, false);
+    }
   }
 
   // One donor of a chained stencil: grid, cell, weight.
@@ -635,6 +674,7 @@ struct OversetAssembler::Impl {
     std::map<std::pair<int, int>, double> known;
     std::map<int, double> knot;
     bool ok = false;
+    int grid = -1, cell = -1;  // the containing cell (a relay or knot receiver)
   };
 
   // The fallback receivers the chains cannot reach: where two grids are both fringe, each one's
@@ -710,6 +750,9 @@ struct OversetAssembler::Impl {
     std::vector<std::map<int, std::vector<Entry>>> stencils(grids.size());
     for (Eigen::Index i = 0; i < m; ++i) {
       const auto [g, c] = knots[solved[static_cast<std::size_t>(i)]];
+      const KnotRow& row = rows[solved[static_cast<std::size_t>(i)]];
+      a.grids[static_cast<std::size_t>(g)].donor_grid[static_cast<std::size_t>(c)] = row.grid;
+      a.grids[static_cast<std::size_t>(g)].donor_cell[static_cast<std::size_t>(c)] = row.cell;
       auto& entries = stencils[static_cast<std::size_t>(g)][c];
       for (Eigen::Index j = 0; j < X.cols(); ++j)
         if (X(i, j) != 0.0)
@@ -756,6 +799,8 @@ struct OversetAssembler::Impl {
         }
       }
       row.ok = true;
+      row.grid = h;
+      row.cell = loc;
       return row;
     }
     return row;
@@ -779,6 +824,8 @@ struct OversetAssembler::Impl {
           const KnotRow row =
               knot_row(a, relay, no_knots, static_cast<int>(g), static_cast<int>(c));
           if (!row.ok) continue;
+          a.grids[g].donor_grid[c] = row.grid;
+          a.grids[g].donor_cell[c] = row.cell;
           auto& entries = chained[g][static_cast<int>(c)];
           for (const auto& [donor, w] : row.known)
             entries.push_back({donor.first, donor.second, w});
@@ -792,8 +839,10 @@ struct OversetAssembler::Impl {
     return any;
   }
 
-  // Rebuilds a grid's stencil arrays with the chained stencils in place of the fallbacks.
-  static void replace_stencils(GridAssembly& ga, const std::map<int, std::vector<Entry>>& chained) {
+  // Rebuilds a grid's stencil arrays with the stencils given in place of the receivers' present
+  // ones (empty for pending fallbacks): chained ones, or else fallback ones.
+  static void replace_stencils(GridAssembly& ga, const std::map<int, std::vector<Entry>>& chained,
+                               bool are_chained = true) {
     std::vector<int> offsets{0}, grids_out, cells_out;
     std::vector<double> weights_out;
     for (std::size_t c = 0; c + 1 < ga.stencil_offsets.size(); ++c) {
@@ -811,8 +860,8 @@ struct OversetAssembler::Impl {
           cells_out.push_back(e.cell);
           weights_out.push_back(e.weight);
         }
-        ga.fallback[c] = 0;
-        ga.chained[c] = 1;
+        ga.fallback[c] = are_chained ? 0 : 1;
+        ga.chained[c] = are_chained ? 1 : 0;
       }
       offsets.push_back(static_cast<int>(cells_out.size()));
     }
@@ -865,9 +914,9 @@ struct OversetAssembler::Impl {
                           std::size_t c) const {
     const auto& pg = previous.grids[g];
     if (pg.status[c] != CellStatus::fringe || pg.chained[c]) return false;  // chained: redone
-    if (grids[g].fin >= 0) return false;                                    // the receiver moved
+    if (moved[g]) return false;                                             // the receiver moved
     const int dg = pg.donor_grid[c];
-    if (dg < 0 || grids[static_cast<std::size_t>(dg)].fin >= 0) return false;  // donor moved
+    if (dg < 0 || moved[static_cast<std::size_t>(dg)]) return false;  // the donor moved
     const auto& ds = a.grids[static_cast<std::size_t>(dg)].status;
     for (int k = pg.stencil_offsets[c]; k < pg.stencil_offsets[c + 1]; ++k)
       if (ds[static_cast<std::size_t>(pg.stencil_cells[static_cast<std::size_t>(k)])] !=
@@ -1025,7 +1074,8 @@ Assembly OversetAssembler::assemble() {
     for (int c = 0; c < n; ++c) all[g].push_back(c);
     a.cells_visited += n;
   }
-  m.run(a, all);
+  m.moved.assign(m.grids.size(), 1);
+  m.run(a, all, true);
   m.connect(a, nullptr, nullptr);
   m.warn(a);
   a.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -1038,24 +1088,33 @@ Assembly OversetAssembler::update(const Assembly& previous,
     throw std::logic_error("OversetAssembler::update: only a vehicle's system turns its fins");
   const auto t0 = std::chrono::steady_clock::now();
   auto& m = *impl_;
-  // The region the fins sweep: their grids' boxes, and the boxes of the fin solids, before and
-  // after the move.
+  // The fins that turn (all of them after an assembly without deflections), and the region they
+  // sweep: their grids' boxes, and the boxes of the fin solids, before and after the move. A fin
+  // that keeps its angle sweeps nothing (its swept box stays empty).
+  const auto& before = previous.fin_deflections;
+  m.moved.assign(m.grids.size(), 0);
   std::vector<Box> swept, swept_solid;
-  for (std::size_t g = 0; g < m.grids.size(); ++g)
-    if (m.grids[g].fin >= 0) {
-      swept.push_back(m.body_box(static_cast<int>(g)));
-      swept_solid.push_back(m.solid_body_box(static_cast<int>(g)));
-    }
+  for (std::size_t g = 0; g < m.grids.size(); ++g) {
+    const int fin = m.grids[g].fin;
+    if (fin < 0) continue;
+    const auto f = static_cast<std::size_t>(fin);
+    m.moved[g] = before.size() != deflections.size() || before[f] != deflections[f] ? 1 : 0;
+    swept.emplace_back();
+    swept_solid.emplace_back();
+    if (!m.moved[g]) continue;
+    swept.back() = m.body_box(static_cast<int>(g));
+    swept_solid.back() = m.solid_body_box(static_cast<int>(g));
+  }
   m.place_fins(deflections);
-  for (std::size_t g = 0, k = 0; g < m.grids.size(); ++g)
-    if (m.grids[g].fin >= 0) {
+  for (std::size_t g = 0; g < m.grids.size(); ++g)
+    if (m.moved[g]) {
+      const auto k = static_cast<std::size_t>(m.grids[g].fin);
       const Box b = m.body_box(static_cast<int>(g));
       swept[k].add(b.lo);
       swept[k].add(b.hi);
       const Box s = m.solid_body_box(static_cast<int>(g));
       swept_solid[k].add(s.lo);
       swept_solid[k].add(s.hi);
-      ++k;
     }
   Assembly a = previous;
   a.fin_deflections = deflections;
@@ -1124,8 +1183,8 @@ Assembly OversetAssembler::update(const Assembly& previous,
         in_swept_box = true;
         near = near || swept_solid[k].contains(x, reach + fin_cover_reach);
       }
-      if (d.fin < 0 && in_swept_box) redo[g][cu] = 1;
-      if (d.fin >= 0 && !near) {
+      if (!m.moved[g] && in_swept_box) redo[g][cu] = 1;
+      if (m.moved[g] && !near) {
         const double hull_cover_reach = slack[cu] > 0 ? slack[cu] + hull_cell_radius : 0.0;
         near = m.hull_gap(x) < reach + hull_cover_reach;
       }
@@ -1136,7 +1195,7 @@ Assembly OversetAssembler::update(const Assembly& previous,
     }
     a.cells_visited += static_cast<int>(cells[g].size());
   }
-  m.run(a, cells);
+  m.run(a, cells, false);
   m.connect(a, &previous, &redo);
   m.warn(a);
   a.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -26,7 +26,8 @@
 //      exactly, inside or outside the stencil's hull.
 //   5. chains: a fallback receiver whose centre lies in a fringe cell of another grid that has
 //      donors of its own takes the containing stencil there with that cell's stencil composed in
-//      (GridAssembly::chained; its donors, all active, may lie in several grids).
+//      (GridAssembly::chained; its donors, all active, may lie in several grids). The fallback
+//      stencils of step 4 are searched only for the receivers left unchained.
 // Invariants of a result: no donor cell is anything but active; weights sum to one.
 #pragma once
 
@@ -121,8 +122,8 @@ class OversetAssembler {
   Assembly assemble(const std::vector<double>& deflections);
   // Full assembly at the grids' present placements (any system).
   Assembly assemble();
-  // After a small fin rotation: only cells near the fins are re-examined; stencils between grids
-  // that did not move are kept, the others refitted (new weights on the previous cells) while
+  // After a small fin rotation: only cells near the fins whose deflection changed are
+  // re-examined; stencils between grids that did not move are kept, the others refitted (new weights on the previous cells) while
   // their donor still contains the centre and nothing outranks it, or else searched from the
   // previous donor. Gives the same statuses as a full assembly (tested). A vehicle's system only
   // (std::logic_error otherwise).
