@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Overset mass balance (docs/overset-flow.md), the last stage of a pressure corrector on an
-// overset mesh. With the fringe pressures fixed, continuity holds in every active cell, so a
-// component whose active cells are closed by walls and fringe (an O-grid) passes no net flux to
-// its fringe. A component that also touches a fixed-pressure patch (the background with its
-// outlet) is not closed: its fringe ring encloses fluid it does not solve, and the flux into the
-// ring is the interpolation's mismatch between the grids (0.3 % of the inflow on the coarse
-// Schaefer-Turek pair), mass that leaves the flow. Per such open component k:
+// Overset mass balance (docs/overset-flow.md), the last stage of a pressure corrector in the
+// step's last outer iteration on an overset mesh. With the fringe pressures fixed, continuity holds
+// in every active cell, so a component whose active cells are closed by walls and fringe (an
+// O-grid) passes no net flux to its fringe. A component that also touches a fixed-pressure patch
+// (the background with its outlet) is not closed: its fringe ring encloses fluid it does not solve,
+// and the flux into the ring is the interpolation's mismatch between the grids (0.3 % of the inflow
+// on the coarse Schaefer-Turek pair), mass that leaves the flow. Per such open component k:
 //   1. Q_0 = its interface flux with the pressure p_0 just solved (fv::interface_flux);
 //   2. once per pressure matrix (an outer iteration: its correctors share the matrix): p_k = the
 //      solution of the same equation with k's fringe values shifted by one pascal (first guess
@@ -15,8 +15,8 @@
 //      interface flux is zero and every active cell's continuity holds, both to the solver's
 //      tolerance. The shift is a pressure offset of the fringe ring against the donor grid, the
 //      Lagrange multiplier of the constraint (the ring as one extra cell of the equation).
-// Cost: one more pressure solve per open component and outer iteration, with the factorisation
-// or the hierarchy of the first (same matrix) and a close first guess.
+// Cost: one more pressure solve per open component and step, with the factorisation or the
+// hierarchy of the first (same matrix) and a close first guess.
 #include <cmath>
 #include <limits>
 

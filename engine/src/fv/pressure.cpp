@@ -114,7 +114,7 @@ void Pimple::face_flux(const std::array<std::vector<double>, 3>& u, std::vector<
   }
 }
 
-void Pimple::correct_pressure(StepReport& r, bool first, bool final) {
+void Pimple::correct_pressure(StepReport& r, bool first, bool final, bool last) {
   const auto n = static_cast<std::size_t>(mesh_.cells());
   const int internal = mesh_.internal_faces();
   const std::size_t a0 = active_[0] ? 0 : (active_[1] ? 1 : 2);
@@ -198,7 +198,7 @@ void Pimple::correct_pressure(StepReport& r, bool first, bool final) {
       eq.source[static_cast<std::size_t>(c)] += net[static_cast<std::size_t>(c)] * mesh_.volume(c);
     });
     // Overset (step 2): fringe rows the interpolation of the current p, hole rows their value.
-    const bool balance = overset_ != nullptr && !open_components_.empty() &&
+    const bool balance = overset_ != nullptr && !open_components_.empty() && last &&
                          corr == settings_.non_orthogonal_correctors;
     if (balance && !shift_current_) W.p_free = eq;  // only the response reads it
     if (implicit_overset()) {                       // overset_implicit.cpp
@@ -226,7 +226,10 @@ void Pimple::correct_pressure(StepReport& r, bool first, bool final) {
       overset_->apply(p.cells, std::numeric_limits<double>::quiet_NaN());
     }
     pressure_flux(p.cells, corrected, phi);
-    // Overset: the open components' interface flux to zero (overset_mass.cpp), last corrector.
+    // Overset: the open components' interface flux to zero (overset_mass.cpp), in the step's last
+    // outer iteration (its every corrector: they share the matrix, so the response is solved
+    // once). The earlier iterations' fluxes keep the interpolation's small mismatch; only the
+    // step's final flux must conserve mass.
     if (balance) {
       const ScopedSeconds clock(overset_seconds_);
       balance_overset_mass(W.p_free, corrected, r);

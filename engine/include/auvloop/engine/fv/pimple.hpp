@@ -203,7 +203,8 @@ class Pimple {
   const std::array<std::vector<Eigen::Vector3d>, 3>& velocity_gradient();
   void transpose_stress();
   void solve_momentum(StepReport& r, bool first);
-  void correct_pressure(StepReport& r, bool first, bool final);
+  // `last`: the step's last outer iteration, where an overset mesh's mass is balanced.
+  void correct_pressure(StepReport& r, bool first, bool final, bool last);
   // The face flux phi = phiHbyA - Df (grad p)_f of the pressure cells `pc` (the corrector's
   // phiHbyA, Df and, when `corrected`, its explicit non-orthogonal part), faces masked.
   void pressure_flux(std::span<const double> pc, bool corrected, std::vector<double>& out) const;
