@@ -5,11 +5,16 @@
 // normalised one by OpenFOAM's definition (lduMatrix::normFactor: sum |A x0 - A xbar| +
 // |b - A xbar| with x0 the initial guess and xbar its mean, taken once at the start of a solve,
 // as its solvers do), not by the solvers' code.
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numeric>
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
+#include <Eigen/SparseCore>
+#include <Eigen/SparseLU>
 
 #include "auvloop/engine/fv/linear_solver.hpp"
 #include "auvloop/engine/fv/operators.hpp"
@@ -113,4 +118,86 @@ TEST(LinearSolver, ResidualNormNamesRoundTripAndUnknownOnesAreRejected) {
   for (const auto n : {fv::ResidualNorm::relative, fv::ResidualNorm::normalised})
     EXPECT_EQ(fv::residual_norm_from_string(fv::to_string(n)), n);
   EXPECT_THROW(fv::residual_norm_from_string("l2"), std::invalid_argument);
+}
+
+// The bordered system (an overset pressure equation with its mass balance, overset_mass.cpp):
+// a negative definite matrix m with two extra unknowns, each coupled to a slab of cells as one
+// more cell of a Laplacian (off-diagonals a > 0 to its cells, diagonal -sum a, and the cells'
+// diagonals made as much stronger). Against Eigen's sparse LU of the assembled (n + 2) system,
+// not the solver's code; and bitwise the same on one and two threads.
+TEST(LinearSolver, BorderedSystemMatchesADirectSolveOfTheAssembledMatrix) {
+  const auto grid = test::sheared_box(10);
+  const fv::Mesh mesh(grid);
+  const auto n = static_cast<std::size_t>(mesh.cells());
+  fv::Matrix m = -transport(mesh, true);
+  fv::Border border;
+  border.columns.resize(2);
+  for (int c = 0; c < mesh.cells(); ++c) {
+    const double x = mesh.centre(c).x();
+    const int k = x < 0.25 ? 0 : (x > 0.75 ? 1 : -1);
+    if (k < 0) continue;
+    auto& col = border.columns[static_cast<std::size_t>(k)];
+    const double a = 0.2 * std::abs(m.diag[static_cast<std::size_t>(c)]) * (1 + 0.5 * k);
+    col.rows.push_back(c);
+    col.values.push_back(a);
+    col.diag -= a;
+    m.diag[static_cast<std::size_t>(c)] -= a;
+  }
+  border.columns[0].rhs = 0.7;
+  border.columns[1].rhs = -1.3;
+  // The assembled matrix and Eigen's solution.
+  std::vector<Eigen::Triplet<double>> t;
+  for (std::size_t c = 0; c < n; ++c)
+    t.emplace_back(static_cast<int>(c), static_cast<int>(c), m.diag[c]);
+  for (int f = 0; f < mesh.internal_faces(); ++f) {
+    const auto fs = static_cast<std::size_t>(f);
+    t.emplace_back(mesh.owner(f), mesh.neighbour(f), m.upper[fs]);
+    t.emplace_back(mesh.neighbour(f), mesh.owner(f), m.lower[fs]);
+  }
+  Eigen::VectorXd rhs(static_cast<Eigen::Index>(n + 2));
+  for (std::size_t c = 0; c < n; ++c) rhs[static_cast<Eigen::Index>(c)] = m.source[c];
+  for (int k = 0; k < 2; ++k) {
+    const auto& col = border.columns[static_cast<std::size_t>(k)];
+    const int row = static_cast<int>(n) + k;
+    for (std::size_t e = 0; e < col.rows.size(); ++e) {
+      t.emplace_back(col.rows[e], row, col.values[e]);
+      t.emplace_back(row, col.rows[e], col.values[e]);
+    }
+    t.emplace_back(row, row, col.diag);
+    rhs[row] = col.rhs;
+  }
+  const auto size = static_cast<Eigen::Index>(n + 2);
+  Eigen::SparseMatrix<double> A(size, size);
+  A.setFromTriplets(t.begin(), t.end());
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(A);
+  ASSERT_EQ(lu.info(), Eigen::Success);
+  const Eigen::VectorXd exact = lu.solve(rhs);
+  double scale = 0;
+  for (Eigen::Index i = 0; i < size; ++i) scale = std::max(scale, std::abs(exact[i]));
+  const auto solve = [&](int threads) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
+                              static_cast<std::size_t>(threads));
+    fv::LinearSolver solver(mesh, fv::Tolerance(1e-12));
+    std::vector<double> x(n, 0.0), lambda(2, 0.0);
+    const auto s = solver.solve_bordered(m, border, x, lambda, fv::SymmetricMethod::cg_amg);
+    EXPECT_GT(s.iterations, 0);
+    x.insert(x.end(), lambda.begin(), lambda.end());
+    return x;
+  };
+  const auto x = solve(1);
+  double error = 0;
+  for (Eigen::Index i = 0; i < size; ++i)
+    error = std::max(error, std::abs(x[static_cast<std::size_t>(i)] - exact[i]));
+  std::printf("bordered: max |x - x_LU| = %.3g of max |x| %.3g; lambda %.6g %.6g\n", error, scale,
+              x[n], x[n + 1]);
+  EXPECT_LT(error, 1e-9 * scale);
+  EXPECT_GT(std::abs(x[n]), 1e-3 * scale);  // the border is not idle
+  EXPECT_EQ(x, solve(2));
+  fv::LinearSolver solver(mesh, fv::Tolerance(1e-12));
+  std::vector<double> x0(n), lambda(2);
+  EXPECT_THROW(solver.solve_bordered(m, border, x0, lambda, fv::SymmetricMethod::cholmod),
+               std::invalid_argument);
+  lambda.resize(1);
+  EXPECT_THROW(solver.solve_bordered(m, border, x0, lambda, fv::SymmetricMethod::cg_amg),
+               std::invalid_argument);
 }

@@ -175,7 +175,8 @@ struct LinearSolver::Impl {
   std::vector<double> b;        // the right-hand side as loaded
   bool loaded = false;
   KrylovWork work;
-  FgmresWork fgmres_work;  // solve_coupled's
+  FgmresWork fgmres_work;                      // solve_coupled's and solve_bordered's
+  std::vector<double> bordered_b, bordered_x;  // solve_bordered's system: n + K values
   // solve_coupled's matrix: the face pattern and the extra entries' pattern it was built for
   // (an overset assembly: rebuilt, with its multigrid, when the assembly changes).
   struct Coupled {
@@ -473,6 +474,60 @@ void LinearSolver::plan_coupled(const Matrix& m, const ExtraEntries& extra) {
     C.csr.coefficients_changed();
   }
   C.amg->plan(C.csr);
+}
+
+SolveStats LinearSolver::solve_bordered(const Matrix& m, const Border& border, std::span<double> x,
+                                        std::span<double> lambda, SymmetricMethod method) {
+  constexpr int kRestart = 30, kMaxIterations = 2000;
+  if (method != SymmetricMethod::cg_amg)
+    throw std::invalid_argument(std::string("LinearSolver::solve_bordered: cg-amg only, got ") +
+                                to_string(method));
+  const auto K = border.columns.size();
+  if (lambda.size() != K)
+    throw std::invalid_argument("LinearSolver::solve_bordered: one lambda per column");
+  const Team::Region team(threads());
+  auto& I = *impl_;
+  // As solve_symmetric: (-m) x + (-B) lambda = -b, (-B^T) x + (-d) lambda = -rhs, positive
+  // definite.
+  const bool changed = I.load(m, -1.0);
+  const int n = I.csr.rows();
+  const auto nu = static_cast<std::size_t>(n);
+  auto& amg = I.amg_for_csr();
+  auto& b = I.bordered_b;
+  auto& xl = I.bordered_x;
+  b.resize(nu + K);
+  xl.resize(nu + K);
+  std::copy(I.b.begin(), I.b.end(), b.begin());
+  std::copy(x.begin(), x.end(), xl.begin());
+  for (std::size_t k = 0; k < K; ++k) {
+    b[nu + k] = -border.columns[k].rhs;
+    xl[nu + k] = lambda[k];
+  }
+  // The border's products in column order, serially (a few thousand entries): deterministic.
+  const LinearMap A = [&](std::span<const double> in, std::span<double> out) {
+    I.csr.multiply(in.first(nu), out.first(nu));
+    for (std::size_t k = 0; k < K; ++k) {
+      const auto& col = border.columns[k];
+      double dot = -col.diag * in[nu + k];
+      for (std::size_t e = 0; e < col.rows.size(); ++e) {
+        const auto row = static_cast<std::size_t>(col.rows[e]);
+        out[row] -= col.values[e] * in[nu + k];
+        dot -= col.values[e] * in[row];
+      }
+      out[nu + k] = dot;
+    }
+  };
+  bool first = true;
+  const LinearMap P = [&](std::span<const double> r, std::span<double> z) {
+    amg.precondition(I.csr, changed && first, r.first(nu), z.first(nu));
+    first = false;
+    for (std::size_t k = 0; k < K; ++k) z[nu + k] = r[nu + k] / -border.columns[k].diag;
+  };
+  const SolveStats stats = fgmres(n + static_cast<int>(K), A, P, b, xl, I.tolerance, kMaxIterations,
+                                  kRestart, I.fgmres_work);
+  std::copy(xl.begin(), xl.begin() + n, x.begin());
+  for (std::size_t k = 0; k < K; ++k) lambda[k] = xl[nu + k];
+  return stats;
 }
 
 SolveStats LinearSolver::solve_coupled(const Matrix& m, const ExtraEntries& extra,

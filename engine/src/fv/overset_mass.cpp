@@ -17,6 +17,23 @@
 //      Lagrange multiplier of the constraint (the ring as one extra cell of the equation).
 // Cost: one more pressure solve per open component and step, with the factorisation or the
 // hierarchy of the first (same matrix) and a close first guess.
+//
+// Bordered (cg-amg with the explicit coupling, where that solve costs as much as the pressure
+// solve itself): the shift delta_k is the Lagrange multiplier, so it is solved for with p. With
+// the fringe values p_j = p_fix,j + lambda_k in component k's fringe ring, the interface flux
+// Q_k = Q_k(p_active = 0, lambda = 0) + sum_f a_f (p_i - lambda_k) over the faces f between an
+// active cell i and the ring, where a_f is the pressure matrix's coefficient of that face (the
+// flux is phiHbyA - D_f (grad p)_f . S, whose p_j coefficient is the matrix's: continuity of
+// every active cell is its row). Q_k = 0 is then one more row of the Laplacian: the ring as one
+// cell, off-diagonals a_f to the active cells beside it, diagonal -sum_f a_f. The bordered
+// matrix stays symmetric and negative definite; LinearSolver::solve_bordered solves it with the
+// multigrid of the pressure matrix, a few more iterations than the plain solve:
+//   B1. column k: per active cell i beside the ring of k, the sum of its rows' a_f to the ring;
+//       diag_k = -sum a_f; rhs_k = -Q_k of the probe pressure (the fixed values in the fixed
+//       cells, zero elsewhere), from the flux of the probe (fv::interface_flux);
+//   B2. solve for p and lambda; the fringe cells of k shifted by lambda_k.
+// Both forms give the same p to the solver's tolerance (test_fv_overset).
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -105,6 +122,87 @@ void Pimple::balance_overset_mass(const Matrix& free, bool corrected, StepReport
       p.cells[s] += delta[static_cast<Eigen::Index>(k)] * shift_response_[k][s];
   });
   pressure_flux(p.cells, corrected, phi);
+}
+
+// B1.
+void Pimple::border_overset_mass(const Matrix& free, bool corrected, Border& border) {
+  auto& W = work_;
+  const auto K = open_components_.size();
+  border.columns.resize(K);
+  for (auto& column : border.columns) {
+    column.rows.clear();
+    column.values.clear();
+    column.diag = 0;
+  }
+  const int internal = mesh_.internal_faces();
+  const auto column_of = [&](int comp) {
+    const auto it = std::find(open_components_.begin(), open_components_.end(), comp);
+    return it == open_components_.end() ? -1 : static_cast<int>(it - open_components_.begin());
+  };
+  // (row, a_f) per face between an active cell and an open component's fringe cell, by fringe
+  // cell and face: a deterministic order, sorted by row below.
+  std::vector<std::vector<std::pair<int, double>>> entries(K);
+  int last_comp = -1, last_column = -1;
+  for (int c : overset_->fringe_cells()) {
+    const int comp = overset_->component_of(c);
+    if (comp != last_comp) {
+      last_comp = comp;
+      last_column = column_of(comp);
+    }
+    if (last_column < 0) continue;
+    for (int f : mesh_.cell_faces(c)) {
+      if (f >= internal) continue;
+      const bool owner = mesh_.owner(f) == c;
+      const int i = owner ? mesh_.neighbour(f) : mesh_.owner(f);
+      if (!overset_->active(i)) continue;
+      // row i's coefficient of column c: upper when i owns the face
+      const double a =
+          owner ? free.lower[static_cast<std::size_t>(f)] : free.upper[static_cast<std::size_t>(f)];
+      entries[static_cast<std::size_t>(last_column)].emplace_back(i, a);
+    }
+  }
+  for (std::size_t k = 0; k < K; ++k) {
+    auto& e = entries[k];
+    std::stable_sort(e.begin(), e.end(),
+                     [](const auto& x, const auto& y) { return x.first < y.first; });
+    auto& column = border.columns[k];
+    for (const auto& [row, a] : e) {
+      if (column.rows.empty() || column.rows.back() != row) {
+        column.rows.push_back(row);
+        column.values.push_back(0.0);
+      }
+      column.values.back() += a;
+      column.diag -= a;
+    }
+  }
+  // rhs_k = -Q_k(probe)
+  const auto n = static_cast<std::size_t>(mesh_.cells());
+  W.probe.assign(n, 0.0);
+  const auto fixed = overset_->fixed_cells();
+  for (std::size_t i = 0; i < fixed.size(); ++i)
+    W.probe[static_cast<std::size_t>(fixed[i])] = fixed_[i];
+  W.probe_flux.resize(phi.size());
+  pressure_flux(W.probe, corrected, W.probe_flux);
+  const auto q = interface_flux(*overset_, mesh_, W.probe_flux);
+  for (std::size_t k = 0; k < K; ++k)
+    border.columns[k].rhs = -q[static_cast<std::size_t>(open_components_[k])];
+}
+
+// B2. (after the solve)
+void Pimple::shift_fringe(std::span<const double> lambda) {
+  int last_comp = -1;
+  double shift = 0;
+  for (int c : overset_->fringe_cells()) {
+    const int comp = overset_->component_of(c);
+    if (comp != last_comp) {
+      last_comp = comp;
+      const auto it = std::find(open_components_.begin(), open_components_.end(), comp);
+      shift = it == open_components_.end()
+                  ? 0.0
+                  : lambda[static_cast<std::size_t>(it - open_components_.begin())];
+    }
+    p.cells[static_cast<std::size_t>(c)] += shift;
+  }
 }
 
 }  // namespace auvloop::engine::fv

@@ -211,6 +211,7 @@ StepReport Pimple::step() {
   // The mass balance's warm start lives within a step: a restart from a checkpoint (written
   // between steps) then continues bitwise.
   for (auto& response : shift_response_) response.clear();
+  work_.lambda.clear();  // the bordered balance's shifts: from zero (nothing to checkpoint)
   phi_old_[1].swap(phi_old_[0]);
   phi_old_[0] = phi;
   const auto coeffs = TimeScheme{settings_.dt, settings_.bdf2 && steps_ > 0}.coeffs();

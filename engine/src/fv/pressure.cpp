@@ -192,7 +192,8 @@ void Pimple::correct_pressure(StepReport& r, bool first, bool final, bool last) 
   const bool corrected = !mesh_.orthogonal();
   Matrix& eq = W.p_eq;
   for (int corr = 0; corr <= settings_.non_orthogonal_correctors; ++corr) {
-    if (corrected) mesh_.gradient(p.cells, p.boundary, gp);
+    // (an overset mesh's fringe HbyA above took the first corrector's gradient of the same p)
+    if (corrected && !(overset_ != nullptr && corr == 0)) mesh_.gradient(p.cells, p.boundary, gp);
     eq = laplacian(mesh_, Df, p);
     parallel_for(mesh_.cells(), [&](int c) {
       eq.source[static_cast<std::size_t>(c)] += net[static_cast<std::size_t>(c)] * mesh_.volume(c);
@@ -200,14 +201,16 @@ void Pimple::correct_pressure(StepReport& r, bool first, bool final, bool last) 
     // Overset (step 2): fringe rows the interpolation of the current p, hole rows their value.
     const bool balance = overset_ != nullptr && !open_components_.empty() && last &&
                          corr == settings_.non_orthogonal_correctors;
-    if (balance && !shift_current_) W.p_free = eq;  // only the response reads it
-    if (implicit_overset()) {                       // overset_implicit.cpp
+    const bool bordered = balance && bordered_balance();
+    if (balance && !bordered && !shift_current_) W.p_free = eq;  // only the response reads it
+    if (implicit_overset()) {                                    // overset_implicit.cpp
       const ScopedSeconds clock(overset_seconds_);
       overset_->couple(eq, p.cells, std::numeric_limits<double>::quiet_NaN(), {}, pressure_extra_,
                        fixed_);
     } else if (overset_ != nullptr) {
       const ScopedSeconds clock(overset_seconds_);
       overset_->fixed_values(p.cells, std::numeric_limits<double>::quiet_NaN(), fixed_);
+      if (bordered) border_overset_mass(eq, corrected, W.border);
       eq.fix_values(mesh_, overset_->fixed_cells(), fixed_);
     }
     if (!pressure_fixed_) {  // reference value p = 0 in the reference cell
@@ -215,6 +218,10 @@ void Pimple::correct_pressure(StepReport& r, bool first, bool final, bool last) 
       eq.diag[ref] += eq.diag[ref];
     }
     const auto s = solve_named(mesh_, eq, p.cells, "pressure equation", [&] {
+      if (bordered) {
+        W.lambda.resize(open_components_.size(), 0.0);  // the last corrector's: a first guess
+        return solver_.solve_bordered(eq, W.border, p.cells, W.lambda, *settings_.pressure_solver);
+      }
       if (implicit_overset())
         return solver_.solve_coupled(eq, pressure_extra_, p.cells, settings_.pressure_solver);
       return solver_.solve_symmetric(eq, p.cells, *settings_.pressure_solver);
@@ -225,12 +232,16 @@ void Pimple::correct_pressure(StepReport& r, bool first, bool final, bool last) 
       const ScopedSeconds clock(overset_seconds_);
       overset_->apply(p.cells, std::numeric_limits<double>::quiet_NaN());
     }
+    if (bordered) {
+      const ScopedSeconds clock(overset_seconds_);
+      shift_fringe(W.lambda);
+    }
     pressure_flux(p.cells, corrected, phi);
     // Overset: the open components' interface flux to zero (overset_mass.cpp), in the step's last
     // outer iteration (its every corrector: they share the matrix, so the response is solved
     // once). The earlier iterations' fluxes keep the interpolation's small mismatch; only the
     // step's final flux must conserve mass.
-    if (balance) {
+    if (balance && !bordered) {
       const ScopedSeconds clock(overset_seconds_);
       balance_overset_mass(W.p_free, corrected, r);
     }

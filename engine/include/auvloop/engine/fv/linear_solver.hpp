@@ -100,6 +100,21 @@ struct ExtraEntries {
   void multiply_add(std::span<const double> x, std::span<double> y, double sign = 1.0) const;
 };
 
+// K extra unknowns lambda bordering a symmetric matrix m of n rows, each coupled symmetrically:
+//   m x + sum_k column_k lambda_k = source,   column_k . x + diag_k lambda_k = rhs_k.
+// An overset mesh's pressure equation with the mass balance of its open components: each
+// component's fringe ring, its values shifted by lambda_k, is one more cell of the Laplacian
+// (docs/overset-flow.md). Columns are sparse, rows ascending, each at most once; diag_k < 0 (a
+// Laplacian's sign) and the bordered matrix negative definite, as the pressure equation is.
+struct Border {
+  struct Column {
+    std::vector<int> rows;
+    std::vector<double> values;
+    double diag = 0, rhs = 0;
+  };
+  std::vector<Column> columns;
+};
+
 class LinearSolver {
  public:
   LinearSolver(const Mesh& mesh, Tolerance tolerance);
@@ -128,6 +143,12 @@ class LinearSolver {
   // of the pattern the later solves pass, as plan_symmetric; a geometric Laplacian makes the
   // solves independent of the run's history, so that a restart continues bitwise).
   void plan_coupled(const Matrix& m, const ExtraEntries& extra);
+  // Solves the bordered system (Border) for x (n values, the initial guess) and lambda (one per
+  // column, likewise): flexible GMRES preconditioned by cg-amg's multigrid cycle of m and the
+  // border's diagonal (the bordered matrix is m plus a low-rank part, so a few more iterations
+  // than m alone). `method` must be cg_amg (std::invalid_argument otherwise).
+  SolveStats solve_bordered(const Matrix& m, const Border& border, std::span<double> x,
+                            std::span<double> lambda, SymmetricMethod method);
 
  private:
   struct Impl;

@@ -211,6 +211,15 @@ class Pimple {
   // Overset mass balance (overset_mass.cpp): the fringe-pressure shifts of the open components
   // that make their interface flux zero; `free` the pressure matrix before its rows were fixed.
   void balance_overset_mass(const Matrix& free, bool corrected, StepReport& r);
+  // The same balance in one solve (overset_mass.cpp, "bordered"), with cg-amg and the explicit
+  // coupling: each open component's fringe ring one more unknown of the pressure equation. The
+  // border from the matrix `free` before its rows are fixed, with fixed_ holding the fixed
+  // cells' values; after the solve, shift_fringe adds the shifts to the fringe values.
+  [[nodiscard]] bool bordered_balance() const {
+    return !implicit_overset() && settings_.pressure_solver == SymmetricMethod::cg_amg;
+  }
+  void border_overset_mass(const Matrix& free, bool corrected, Border& border);
+  void shift_fringe(std::span<const double> lambda);
   void store_predictor_force();
   void apply_slip();
   // The skewness-corrected face flux of a cell velocity u into `flux` (internal faces; boundary
@@ -243,6 +252,9 @@ class Pimple {
     // flux, the shifted fixed values.
     Matrix p_free, p_shifted;
     std::vector<double> p_shift, phi_shift, fixed_shift, offsets;
+    // The bordered form (cg-amg): the border, its unknowns (the fringe shifts), a probe pressure.
+    Border border;
+    std::vector<double> lambda, probe, probe_flux;
     // Overset re-assembly: the filled cells' values of one sweep, the cells that hold a value,
     // those still to fill and those filled in a sweep, the faces that came alive.
     std::vector<double> fill;
