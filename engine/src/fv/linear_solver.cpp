@@ -478,6 +478,9 @@ void LinearSolver::plan_coupled(const Matrix& m, const ExtraEntries& extra) {
 
 SolveStats LinearSolver::solve_bordered(const Matrix& m, const Border& border, std::span<double> x,
                                         std::span<double> lambda, SymmetricMethod method) {
+  // Flexible GMRES, not flexible CG: with the block-diagonal preconditioner the border costs
+  // FGMRES about 4 more iterations a solve on the REMUS coarse system (24 against 20), truncated
+  // flexible CG 13 more, and the pressure stage took 0.44 s a step against 0.32 s.
   constexpr int kRestart = 30, kMaxIterations = 2000;
   if (method != SymmetricMethod::cg_amg)
     throw std::invalid_argument(std::string("LinearSolver::solve_bordered: cg-amg only, got ") +

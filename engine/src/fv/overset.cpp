@@ -10,6 +10,8 @@
 
 #include <fmt/format.h>
 
+#include "parallel.hpp"
+
 namespace auvloop::engine::fv {
 
 using mesher::CellStatus;
@@ -75,6 +77,9 @@ void Overset::assign(mesher::CompositeStencils stencils) {
     }
   }
   stencils_ = std::move(stencils);
+  donor_component_.resize(stencils_.donors.size());
+  for (std::size_t k = 0; k < donor_component_.size(); ++k)
+    donor_component_[k] = component_of(stencils_.donors[k]);
   fixed_ = std::move(fixed);
   fringe_ = std::move(fringe);
   active_cells_ = std::move(active_cells);
@@ -133,11 +138,28 @@ Eigen::Vector3d Overset::interpolate(const Vector& u, int c) const {
   Eigen::Vector3d v = Eigen::Vector3d::Zero();
   for (int k = stencils_.offsets[cu]; k < stencils_.offsets[cu + 1]; ++k) {
     const auto ku = static_cast<std::size_t>(k);
-    const int d = stencils_.donors[ku];
-    const auto du = static_cast<std::size_t>(d);
+    const auto du = static_cast<std::size_t>(stencils_.donors[ku]);
     const Eigen::Vector3d ud(u[0][du], u[1][du], u[2][du]);
-    const int g = component_of(d);
+    const int g = donor_component_[ku];
     v += stencils_.weights[ku] * (g == h ? ud : Eigen::Vector3d(rotation(h, g) * ud));
+  }
+  return v;
+}
+
+double Overset::interpolate(const Vector& u, int c, std::size_t i) const {
+  const auto cu = static_cast<std::size_t>(c);
+  const int h = component_of(c);
+  const auto e = static_cast<Eigen::Index>(i);
+  double v = 0;
+  for (int k = stencils_.offsets[cu]; k < stencils_.offsets[cu + 1]; ++k) {
+    const auto ku = static_cast<std::size_t>(k);
+    const auto du = static_cast<std::size_t>(stencils_.donors[ku]);
+    const int g = donor_component_[ku];
+    // (row i of R_hg) . u_d: the sums in the order of interpolate(u, c)'s, so the same bits
+    const double ui = g == h ? u[i][du]
+                             : (rotation(h, g)(e, 0) * u[0][du] + rotation(h, g)(e, 1) * u[1][du]) +
+                                   rotation(h, g)(e, 2) * u[2][du];
+    v += stencils_.weights[ku] * ui;
   }
   return v;
 }
@@ -148,12 +170,11 @@ void Overset::fixed_values(const Vector& u, std::size_t i, std::vector<double>& 
     return;
   }
   out.resize(fixed_.size());
-  const auto e = static_cast<Eigen::Index>(i);
-  for (std::size_t j = 0; j < fixed_.size(); ++j) {
-    const int c = fixed_[j];
-    out[j] =
-        status(c) == CellStatus::fringe ? interpolate(u, c)[e] : u[i][static_cast<std::size_t>(c)];
-  }
+  parallel_for(static_cast<int>(fixed_.size()), [&](int j) {
+    const int c = fixed_[static_cast<std::size_t>(j)];
+    out[static_cast<std::size_t>(j)] =
+        status(c) == CellStatus::fringe ? interpolate(u, c, i) : u[i][static_cast<std::size_t>(c)];
+  });
 }
 
 void Overset::apply(const std::array<std::span<double>, 3>& u) const {
@@ -164,34 +185,44 @@ void Overset::apply(const std::array<std::span<double>, 3>& u) const {
   // The donors are active, so writing the fringe cells after all are interpolated is the same
   // as in place; kept apart for clarity.
   const Vector in{u[0], u[1], u[2]};
+  const int m = static_cast<int>(fringe_.size());
   scratch_.resize(fringe_.size());
-  for (std::size_t j = 0; j < fringe_.size(); ++j) scratch_[j] = interpolate(in, fringe_[j]);
-  for (std::size_t j = 0; j < fringe_.size(); ++j)
+  parallel_for(m, [&](int j) {
+    const int c = fringe_[static_cast<std::size_t>(j)];  // as fixed_values(u, i): the same bits
+    scratch_[static_cast<std::size_t>(j)] =
+        Eigen::Vector3d(interpolate(in, c, 0), interpolate(in, c, 1), interpolate(in, c, 2));
+  });
+  parallel_for(m, [&](int j) {
+    const auto ju = static_cast<std::size_t>(j);
     for (std::size_t i = 0; i < 3; ++i)
-      u[i][static_cast<std::size_t>(fringe_[j])] = scratch_[j][static_cast<Eigen::Index>(i)];
+      u[i][static_cast<std::size_t>(fringe_[ju])] = scratch_[ju][static_cast<Eigen::Index>(i)];
+  });
 }
 
 void Overset::fixed_values(std::span<const double> field, double hole,
                            std::vector<double>& out) const {
   out.resize(fixed_.size());
-  for (std::size_t i = 0; i < fixed_.size(); ++i) {
+  parallel_for(static_cast<int>(fixed_.size()), [&](int j) {
+    const auto i = static_cast<std::size_t>(j);
     const int c = fixed_[i];
     if (status(c) == CellStatus::fringe) {
       out[i] = interpolate(field, c);
     } else {
       out[i] = std::isnan(hole) ? field[static_cast<std::size_t>(c)] : hole;
     }
-  }
+  });
 }
 
 void Overset::apply(std::span<double> field, double hole) const {
-  for (int c : fixed_) {
+  // In place: a fringe cell reads only active donors, which no iteration writes.
+  parallel_for(static_cast<int>(fixed_.size()), [&](int j) {
+    const int c = fixed_[static_cast<std::size_t>(j)];
     if (status(c) == CellStatus::fringe) {
-      field[static_cast<std::size_t>(c)] = interpolate(field, c);  // donors are active: unchanged
+      field[static_cast<std::size_t>(c)] = interpolate(field, c);
     } else if (!std::isnan(hole)) {
       field[static_cast<std::size_t>(c)] = hole;
     }
-  }
+  });
 }
 
 std::vector<double> interface_flux(const Overset& overset, const Mesh& mesh,

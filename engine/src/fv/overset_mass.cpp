@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Overset mass balance (docs/overset-flow.md), the last stage of a pressure corrector in the
-// step's last outer iteration on an overset mesh. With the fringe pressures fixed, continuity holds
+// Overset mass balance (docs/overset-flow.md), the last stage of a pressure corrector on an
+// overset mesh. With the fringe pressures fixed, continuity holds
 // in every active cell, so a component whose active cells are closed by walls and fringe (an
 // O-grid) passes no net flux to its fringe. A component that also touches a fixed-pressure patch
 // (the background with its outlet) is not closed: its fringe ring encloses fluid it does not solve,
@@ -15,8 +15,8 @@
 //      interface flux is zero and every active cell's continuity holds, both to the solver's
 //      tolerance. The shift is a pressure offset of the fringe ring against the donor grid, the
 //      Lagrange multiplier of the constraint (the ring as one extra cell of the equation).
-// Cost: one more pressure solve per open component and step, with the factorisation or the
-// hierarchy of the first (same matrix) and a close first guess.
+// Cost: one more pressure solve per open component and outer iteration, with the factorisation
+// or the hierarchy of the first (same matrix) and a close first guess.
 //
 // Bordered (cg-amg with the explicit coupling, where that solve costs as much as the pressure
 // solve itself): the shift delta_k is the Lagrange multiplier, so it is solved for with p. With

@@ -234,14 +234,10 @@ StepReport Pimple::step() {
       r.seconds_assembly += seconds_since(t0);
       solve_momentum(r, outer == 1);
       r.seconds_momentum += seconds_since(t0);
-      // The last outer iteration of the step: the final one, or a converged one (momentum's
-      // initial residual of this iteration is small enough).
-      const bool last = outer == settings_.outer_iterations ||
-                        (outer > 1 && r.outer_residual < settings_.outer_tolerance);
       t0 = std::chrono::steady_clock::now();
       shift_current_ = false;  // a new momentum matrix: a new pressure matrix
       for (int corr = 0; corr < settings_.pressure_correctors; ++corr)
-        correct_pressure(r, outer == 1 && corr == 0, final, last);
+        correct_pressure(r, outer == 1 && corr == 0, final);
       store_predictor_force();
       r.seconds_pressure += seconds_since(t0);
       if (turbulence_) {
@@ -258,7 +254,8 @@ StepReport Pimple::step() {
         r.seconds_turbulence += seconds_since(t0);
       }
       r.outer_iterations = outer;
-      if (last) break;
+      // Converged outer loop: momentum's initial residual of this iteration is small enough.
+      if (outer > 1 && r.outer_residual < settings_.outer_tolerance) break;
     }
     const auto t0 = std::chrono::steady_clock::now();
     const auto [co, cell] = courant(mesh_, relative_flux(), dt_);

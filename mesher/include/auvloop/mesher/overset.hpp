@@ -123,10 +123,10 @@ class OversetAssembler {
   // Full assembly at the grids' present placements (any system).
   Assembly assemble();
   // After a small fin rotation: only cells near the fins whose deflection changed are
-  // re-examined; stencils between grids that did not move are kept, the others refitted (new weights on the previous cells) while
-  // their donor still contains the centre and nothing outranks it, or else searched from the
-  // previous donor. Gives the same statuses as a full assembly (tested). A vehicle's system only
-  // (std::logic_error otherwise).
+  // re-examined; stencils between grids that did not move are kept, the others refitted (new
+  // weights on the previous cells) while their donor still contains the centre and nothing outranks
+  // it, or else searched from the previous donor. Gives the same statuses as a full assembly
+  // (tested). A vehicle's system only (std::logic_error otherwise).
   Assembly update(const Assembly& previous, const std::vector<double>& deflections);
 
   // Body-frame centre of a cell (placement applied).

@@ -131,6 +131,10 @@ class Overset {
   bool turned_ = false;
   int generation_ = 0;
   mutable std::vector<Eigen::Vector3d> scratch_;  // apply()'s interpolated vectors
+  // Per stencil entry: the donor's component (the rotation into the receiver's axes).
+  std::vector<int> donor_component_;
+  // Component i of the vector interpolated at fringe cell c (interpolate(u, c)[i]).
+  [[nodiscard]] double interpolate(const Vector& u, int c, std::size_t i) const;
 };
 
 // Net volume flux (m^3/s) out of each component's active cells through the faces they share

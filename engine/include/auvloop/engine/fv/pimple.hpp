@@ -72,6 +72,10 @@ struct PimpleSettings {
   // iteration towards the steady flow, its dt only a label.
   bool steady = false;
   OversetCoupling overset_coupling = OversetCoupling::lagged;
+  // The overset mass balance (overset_mass.cpp) as one bordered pressure solve, where the
+  // pressure solver is cg-amg and the coupling explicit; false, or any other solver: one more
+  // solve per open component for its response (the reference form).
+  bool bordered_mass_balance = true;
 };
 
 struct StepReport {
@@ -203,8 +207,7 @@ class Pimple {
   const std::array<std::vector<Eigen::Vector3d>, 3>& velocity_gradient();
   void transpose_stress();
   void solve_momentum(StepReport& r, bool first);
-  // `last`: the step's last outer iteration, where an overset mesh's mass is balanced.
-  void correct_pressure(StepReport& r, bool first, bool final, bool last);
+  void correct_pressure(StepReport& r, bool first, bool final);
   // The face flux phi = phiHbyA - Df (grad p)_f of the pressure cells `pc` (the corrector's
   // phiHbyA, Df and, when `corrected`, its explicit non-orthogonal part), faces masked.
   void pressure_flux(std::span<const double> pc, bool corrected, std::vector<double>& out) const;
@@ -216,7 +219,8 @@ class Pimple {
   // border from the matrix `free` before its rows are fixed, with fixed_ holding the fixed
   // cells' values; after the solve, shift_fringe adds the shifts to the fringe values.
   [[nodiscard]] bool bordered_balance() const {
-    return !implicit_overset() && settings_.pressure_solver == SymmetricMethod::cg_amg;
+    return settings_.bordered_mass_balance && !implicit_overset() &&
+           settings_.pressure_solver == SymmetricMethod::cg_amg;
   }
   void border_overset_mass(const Matrix& free, bool corrected, Border& border);
   void shift_fringe(std::span<const double> lambda);
