@@ -68,7 +68,7 @@ Run run(int threads, int restart_after = 0,
   // An iterative pressure solver: a restart from cholmod-pcg is not exact (pimple.hpp).
   s.pressure_solver = engine::fv::SymmetricMethod::cg_amg;
   s.overset_coupling = coupling;
-  s.bordered_mass_balance = bordered;
+  s.mass_balance = bordered ? engine::fv::MassBalance::bordered : engine::fv::MassBalance::response;
   if (steady) {  // SIMPLE towards the steady flow
     s.steady = true;
     s.outer_iterations = 1;

@@ -55,6 +55,24 @@ OversetCoupling overset_coupling_from_string(const std::string& s) {
   throw std::invalid_argument("unknown overset coupling '" + s + "' (explicit, implicit)");
 }
 
+const char* to_string(MassBalance b) {
+  switch (b) {
+    case MassBalance::bordered:
+      return "bordered";
+    case MassBalance::response:
+      return "response";
+    case MassBalance::off:
+      return "off";
+  }
+  return "?";
+}
+
+MassBalance mass_balance_from_string(const std::string& s) {
+  for (auto b : {MassBalance::bordered, MassBalance::response, MassBalance::off})
+    if (s == to_string(b)) return b;
+  throw std::invalid_argument("unknown overset mass balance '" + s + "' (bordered, response, off)");
+}
+
 Pimple::Pimple(const Mesh& mesh, PimpleSettings settings)
     : U(mesh, "U"),
       p(mesh, "p"),

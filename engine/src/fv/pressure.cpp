@@ -200,6 +200,7 @@ void Pimple::correct_pressure(StepReport& r, bool first, bool final) {
     });
     // Overset (step 2): fringe rows the interpolation of the current p, hole rows their value.
     const bool balance = overset_ != nullptr && !open_components_.empty() &&
+                         settings_.mass_balance != MassBalance::off &&
                          corr == settings_.non_orthogonal_correctors;
     const bool bordered = balance && bordered_balance();
     if (balance && !bordered && !shift_current_) W.p_free = eq;  // only the response reads it

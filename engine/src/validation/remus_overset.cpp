@@ -43,7 +43,7 @@ RemusOversetResult remus_overset(const RemusOversetRun& run) {
   s.outer_iterations = run.outer_iterations;
   s.convection = fv::Convection::upwind;  // van_leer_skew diverges at the hull's tail face
   s.overset_coupling = run.coupling;
-  s.bordered_mass_balance = run.bordered_mass_balance;
+  s.mass_balance = run.mass_balance;
   s.max_courant = 500;  // the fin roots' tiny cells: a guard against divergence only
   fv::Pimple flow(mesh, s);
   flow.set_overset(&sys.overset());

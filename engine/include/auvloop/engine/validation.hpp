@@ -175,7 +175,7 @@ struct RemusOversetRun {
   int turning_fin = -1;                  // the fin that turns, or -1: every fin
   int outer_iterations = 3;
   fv::OversetCoupling coupling = fv::OversetCoupling::lagged;
-  bool bordered_mass_balance = true;  // PimpleSettings::bordered_mass_balance
+  fv::MassBalance mass_balance = fv::MassBalance::bordered;
   std::function<void(const fv::StepReport&, double reassembly_seconds, double step_seconds)>
       on_step;
 };
