@@ -5,15 +5,18 @@
 // deflection); fin k's axes are its post rotation by d_k - d0_k; the motions turn each fin
 // about its post (zero grid velocity on the post, rate x arm off it); bad input is rejected and
 // a rejected update keeps the coupling; every wall face belongs to an active cell, the hull's
-// wall area is the Myring profile's (faceted), the fins' equal, at rest and turned.
+// wall area is the Myring profile's (faceted), the fins' equal, at rest and turned; a run with the
+// fins turning is bitwise the same on one and two threads.
 #include <cmath>
 #include <cstdio>
 #include <numbers>
 #include <stdexcept>
 
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include "auvloop/engine/fv/vehicle_overset.hpp"
+#include "auvloop/engine/validation.hpp"
 #include "auvloop/geometry/myring.hpp"
 #include "auvloop/mesher/mesh_settings.hpp"
 
@@ -162,4 +165,28 @@ TEST(VehicleOverset, EveryWallFaceIsAnActiveCellsSoEachPatchCountsItsWallOnce) {
     }
   }
   EXPECT_GT(fin0, 0);
+}
+
+// The REMUS system with every fin turning (the mesher's update each step, cells coming out of
+// holes, the fins' axes turning, the bordered mass balance): the fields after 2 straight and 3
+// turning steps are bitwise the same on one and on two threads.
+TEST(VehicleOverset, FinsTurningRunIsBitwiseTheSameOnOneAndTwoThreads) {
+  const auto run = [](int threads) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
+                              static_cast<std::size_t>(threads));
+    validation::RemusOversetRun r;
+    r.straight = 2 * r.dt;
+    r.turning = 3 * r.dt;
+    r.outer_iterations = 2;
+    r.keep_fields = true;
+    return validation::remus_overset(r);
+  };
+  const auto a = run(1), b = run(2);
+  ASSERT_TRUE(a.failure.empty()) << a.failure;
+  ASSERT_EQ(a.steps, 5);
+  std::printf("%d status changes over the turning steps, %d cells out of a hole\n",
+              a.status_changes, a.uncovered_cells);
+  EXPECT_GT(a.status_changes, 0);
+  EXPECT_TRUE(a.U == b.U && a.p == b.p && a.phi == b.phi);
+  EXPECT_EQ(a.drag, b.drag);
 }

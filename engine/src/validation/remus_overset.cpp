@@ -101,6 +101,11 @@ RemusOversetResult remus_overset(const RemusOversetRun& run) {
     r.t.push_back(flow.time());
     r.drag.push_back(-fv::patch_force(flow, fv::VehicleOverset::hull_wall()).total().x());
   }
+  if (run.keep_fields) {
+    for (std::size_t i = 0; i < 3; ++i) r.U[i] = flow.U.c[i].cells;
+    r.p = flow.p.cells;
+    r.phi = flow.phi;
+  }
   r.seconds = seconds_since(t0);
   return r;
 }

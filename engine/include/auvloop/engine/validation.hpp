@@ -176,6 +176,7 @@ struct RemusOversetRun {
   int outer_iterations = 3;
   fv::OversetCoupling coupling = fv::OversetCoupling::lagged;
   fv::MassBalance mass_balance = fv::MassBalance::bordered;
+  bool keep_fields = false;  // the result holds the last step's fields
   std::function<void(const fv::StepReport&, double reassembly_seconds, double step_seconds)>
       on_step;
 };
@@ -186,6 +187,9 @@ struct RemusOversetResult {
   int status_changes = 0, uncovered_cells = 0;
   double seconds = 0, assembly_seconds = 0;
   std::vector<double> t, drag;  // hull force along -x (N per unit density, m^4/s^2)
+  // With keep_fields: U's components and p per cell, phi per face, after the last step.
+  std::array<std::vector<double>, 3> U;
+  std::vector<double> p, phi;
 };
 RemusOversetResult remus_overset(const RemusOversetRun& run);
 
