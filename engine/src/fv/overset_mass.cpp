@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Overset mass balance (docs/overset-flow.md), the last stage of a pressure corrector on an
-// overset mesh. With the fringe pressures fixed, continuity holds
-// in every active cell, so a component whose active cells are closed by walls and fringe (an
-// O-grid) passes no net flux to its fringe. A component that also touches a fixed-pressure patch
-// (the background with its outlet) is not closed: its fringe ring encloses fluid it does not solve,
-// and the flux into the ring is the interpolation's mismatch between the grids (0.3 % of the inflow
-// on the coarse Schaefer-Turek pair), mass that leaves the flow. Per such open component k:
+// overset mesh. With the fringe pressures fixed, continuity holds in every active cell, so a
+// component whose active cells are closed by walls and fringe (an O-grid) passes no net flux to
+// its fringe. A component that also touches a fixed-pressure patch (the background with its
+// outlet) is not closed: its fringe ring encloses fluid it does not solve, and the flux into the
+// ring is the interpolation's mismatch between the grids (0.3 % of the inflow on the coarse
+// Schaefer-Turek pair), mass that leaves the flow. Per such open component k (the response form):
 //   1. Q_0 = its interface flux with the pressure p_0 just solved (fv::interface_flux);
 //   2. once per pressure matrix (an outer iteration: its correctors share the matrix): p_k = the
 //      solution of the same equation with k's fringe values shifted by one pascal (first guess
@@ -124,6 +124,11 @@ void Pimple::balance_overset_mass(const Matrix& free, bool corrected, StepReport
   pressure_flux(p.cells, corrected, phi);
 }
 
+int Pimple::open_index(int component) const {
+  const auto it = std::find(open_components_.begin(), open_components_.end(), component);
+  return it == open_components_.end() ? -1 : static_cast<int>(it - open_components_.begin());
+}
+
 // B1.
 void Pimple::border_overset_mass(const Matrix& free, bool corrected, Border& border) {
   auto& W = work_;
@@ -135,10 +140,6 @@ void Pimple::border_overset_mass(const Matrix& free, bool corrected, Border& bor
     column.diag = 0;
   }
   const int internal = mesh_.internal_faces();
-  const auto column_of = [&](int comp) {
-    const auto it = std::find(open_components_.begin(), open_components_.end(), comp);
-    return it == open_components_.end() ? -1 : static_cast<int>(it - open_components_.begin());
-  };
   // (row, a_f) per face between an active cell and an open component's fringe cell, by fringe
   // cell and face: a deterministic order, sorted by row below.
   std::vector<std::vector<std::pair<int, double>>> entries(K);
@@ -147,7 +148,7 @@ void Pimple::border_overset_mass(const Matrix& free, bool corrected, Border& bor
     const int comp = overset_->component_of(c);
     if (comp != last_comp) {
       last_comp = comp;
-      last_column = column_of(comp);
+      last_column = open_index(comp);
     }
     if (last_column < 0) continue;
     for (int f : mesh_.cell_faces(c)) {
@@ -196,10 +197,8 @@ void Pimple::shift_fringe(std::span<const double> lambda) {
     const int comp = overset_->component_of(c);
     if (comp != last_comp) {
       last_comp = comp;
-      const auto it = std::find(open_components_.begin(), open_components_.end(), comp);
-      shift = it == open_components_.end()
-                  ? 0.0
-                  : lambda[static_cast<std::size_t>(it - open_components_.begin())];
+      const int k = open_index(comp);
+      shift = k < 0 ? 0.0 : lambda[static_cast<std::size_t>(k)];
     }
     p.cells[static_cast<std::size_t>(c)] += shift;
   }

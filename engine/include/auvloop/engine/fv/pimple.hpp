@@ -231,6 +231,8 @@ class Pimple {
   }
   void border_overset_mass(const Matrix& free, bool corrected, Border& border);
   void shift_fringe(std::span<const double> lambda);
+  // The place of an overset component in open_components_, -1 if it is closed.
+  [[nodiscard]] int open_index(int component) const;
   void store_predictor_force();
   void apply_slip();
   // The skewness-corrected face flux of a cell velocity u into `flux` (internal faces; boundary
