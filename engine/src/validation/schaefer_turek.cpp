@@ -45,6 +45,7 @@ mesher::CylinderOversetSpec cylinder_overset_spec(const ChannelGrid& g) {
   spec.radial_ratio = g.radial_ratio;
   spec.downstream_cells =
       std::max(8, static_cast<int>(std::lround(g.downstream_cells_per_side * g.m)));
+  spec.spacing = g.background_spacing;
   return spec;
 }
 
@@ -270,10 +271,12 @@ SheddingResult schaefer_turek_2d2(const SheddingCase& k) {
   s.outer_iterations = k.outer_iterations;
   s.convection = k.convection;
   s.max_courant = 20;
-  Channel ch(k.grid, 1.5, s);
+  Channel ch(k.grid, 1.5, s, k.overset);
   auto& flow = ch.flow();
   SheddingResult r;
   r.cells = ch.mesh().cells();
+  if (ch.overset() != nullptr)
+    r.active_cells = static_cast<int>(ch.overset()->active_cells().size());
   auto& t = r.t;
   auto& cd = r.cd;
   auto& cl = r.cl;
@@ -285,6 +288,9 @@ SheddingResult schaefer_turek_2d2(const SheddingCase& k) {
     if (flow.time() >= kick && flow.time() < kick + dt) ch.spin(0.0);
     const auto rep = flow.step();
     r.max_courant = std::max(r.max_courant, rep.max_courant);
+    r.max_continuity = std::max(r.max_continuity, rep.continuity_error);
+    r.max_interface_flux =
+        std::max(r.max_interface_flux, rep.interface_flux / (ch.ubar() * 0.41 * 0.01));
     CylinderResult c;
     ch.measure(c);
     t.push_back(flow.time());

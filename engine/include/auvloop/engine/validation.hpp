@@ -87,13 +87,15 @@ struct ChannelGrid {
   double radial_ratio = 8;               //   graded outermost / innermost = radial_ratio
   double downstream_cells_per_side = 4;  // box to outlet: downstream_cells_per_side x m cells,
   double downstream_ratio = 6;           //   graded last / first = downstream_ratio
+  // Overset only: the background's uniform cell size (m; 0: the O-grid's outer cell size).
+  double background_spacing = 0;
 };
 
 // The mesher's specification of that grid.
 mesher::CylinderChannelSpec cylinder_spec(const ChannelGrid& g);
 // Its overset counterpart (issue 17): an O-grid of 4 m cells round the cylinder and m radial
-// cells graded by radial_ratio out to 3 radii, over a Cartesian background of the O-grid's outer
-// cell size with downstream_cells_per_side x m cells to the outlet.
+// cells graded by radial_ratio out to 3 radii, over a Cartesian background of background_spacing
+// (or the O-grid's outer cell size) with downstream_cells_per_side x m cells to the outlet.
 mesher::CylinderOversetSpec cylinder_overset_spec(const ChannelGrid& g);
 
 // Schaefer-Turek 2D-1 (steady, Re = 20) on the grid `g` by pseudo-time marching (Euler) with
@@ -197,11 +199,14 @@ RemusOversetResult remus_overset(const RemusOversetRun& run);
 // St, cD max and cL max over the last `measured_periods` periods of cL (upward crossings of its
 // mean). periods = 0 when fewer than measured_periods + 2 periods developed (no shedding).
 struct SheddingResult {
-  int cells = 0, steps = 0, periods = 0;
+  int cells = 0, active_cells = 0, steps = 0, periods = 0;
   double strouhal = 0, cd_max = 0, cl_max = 0;
   double period_drift = 0;    // relative change of the window's length from the previous window
   double shedding_onset = 0;  // time of the first upward crossing of cL (s)
   double max_courant = 0;
+  // Overset: the largest continuity error of a step (over the active cells) and the largest
+  // interface flux of a step relative to the inflow (Ubar H per unit depth).
+  double max_continuity = 0, max_interface_flux = 0;
   double seconds = 0;
   std::vector<double> t, cd, cl;  // the histories, one sample per time step
 };
@@ -212,6 +217,7 @@ struct SheddingCase {
   int measured_periods = 3;
   int outer_iterations = 2;  // PIMPLE outer iterations per step
   fv::Convection convection = fv::Convection::van_leer_skew;
+  bool overset = false;  // on cylinder_overset_spec(grid)'s pair instead of the single grid
 };
 SheddingResult schaefer_turek_2d2(const SheddingCase& c);
 
