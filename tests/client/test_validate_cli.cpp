@@ -12,7 +12,7 @@ TEST(ValidateCli, ListsTheImplementedCases) {
   const auto r = run_cli("validate --list");
   EXPECT_EQ(r.exit_code, 0) << r.output;
   for (const char* name :
-       {"mms", "taylor-green", "cavity-re100", "cavity-re1000", "schaefer-turek-2d1",
+       {"mms", "mms-overset", "taylor-green", "cavity-re100", "cavity-re1000", "schaefer-turek-2d1",
         "schaefer-turek-2d1-overset", "schaefer-turek-2d2", "schaefer-turek-2d2-overset",
         "rotating-frame-at-rest", "galilean-cylinder", "pitching-foil"})
     EXPECT_NE(r.output.find(name), std::string::npos) << name;

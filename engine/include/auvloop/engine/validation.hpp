@@ -54,6 +54,22 @@ struct MmsError {
 };
 MmsError mms_convection_diffusion(int n);
 
+// Manufactured steady Navier-Stokes on an overset pair of stretched, skewed grids (an O-grid
+// round a cylinder over a Cartesian background, mms_overset.cpp states the solution, grids and
+// conditions): level m has 4 m x m O-grid cells and background cells of pi / (8 m) m. The
+// errors of |U| (m/s) and p (m^2/s^2) over the active cells of both grids.
+struct MmsOversetError {
+  int m = 0, cells = 0, active_cells = 0;
+  double l2_u = 0, max_u = 0, l2_p = 0, max_p = 0;
+  int iterations = 0;  // pseudo-time steps to convergence
+  bool converged = false;
+  // The last step's continuity error over the active cells and interface flux relative to
+  // the inflow (U0 per unit area).
+  double continuity_error = 0, interface_flux = 0;
+  double seconds = 0;
+};
+MmsOversetError mms_overset(int m);
+
 // Lid-driven cavity on n x n uniform cells: the largest deviations from Ghia et al. of u on the
 // vertical and v on the horizontal centreline, in units of the lid speed.
 struct CavityResult {
