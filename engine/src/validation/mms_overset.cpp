@@ -38,8 +38,8 @@ namespace auvloop::engine::validation {
 
 namespace {
 constexpr double kPi = std::numbers::pi;
-constexpr double kU0 = 1.0, kA = 0.05, kP = 0.25, kNu = 0.01;  // m/s, m^2/s, m^2/s^2, m^2/s
-constexpr double kK = 2 * kPi;                                 // 1/m
+constexpr double kU0 = 1.0, kA = 0.05, kP = 0.25, kNu = 0.01;          // m/s, m^2/s, m^2/s^2, m^2/s
+constexpr double kK = 2 * kPi;                                         // 1/m
 constexpr double kRadius = 0.1, kOuter = 0.25, kCx = 0.45, kCy = 0.5;  // m
 
 // g and its first three derivatives at x (1. above).
@@ -95,7 +95,8 @@ mesher::CylinderOverset skewed_pair(int m) {
   }
   for (auto& q : pair.cylinder.points) {
     const double dx = q.x() - kCx, dy = q.y() - kCy, r = std::hypot(dx, dy);
-    const double turn = 0.15 * std::sin(kPi * std::clamp((r - kRadius) / (kOuter - kRadius), 0.0, 1.0));
+    const double turn =
+        0.15 * std::sin(kPi * std::clamp((r - kRadius) / (kOuter - kRadius), 0.0, 1.0));
     const double c = std::cos(turn), s = std::sin(turn);
     q.x() = kCx + c * dx - s * dy;
     q.y() = kCy + s * dx + c * dy;
