@@ -113,6 +113,11 @@ void Pimple::balance_overset_mass(const Matrix& free, bool corrected, StepReport
         overset_->apply(W.p_shift, std::numeric_limits<double>::quiet_NaN());
         for (std::size_t j = 0; j < fringe.size(); ++j)
           W.p_shift[static_cast<std::size_t>(fringe[j])] += W.offsets[j];
+        response.resize(n);
+        parallel_for(mesh_.cells(), [&](int c) {
+          const auto s = static_cast<std::size_t>(c);
+          response[s] = W.p_shift[s] - p.cells[s];
+        });
       } else {  // the response itself: p_0 plus it for the flux
         response.assign(W.p_shift.begin(), W.p_shift.end());
         parallel_for(mesh_.cells(), [&](int c) {
@@ -126,13 +131,6 @@ void Pimple::balance_overset_mass(const Matrix& free, bool corrected, StepReport
       for (std::size_t j = 0; j < K; ++j) {
         const auto cj = static_cast<std::size_t>(open_components_[j]);
         shift_matrix_(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(k)) = qk[cj] - q0[cj];
-      }
-      if (implicit_overset()) {
-        response.resize(n);
-        parallel_for(mesh_.cells(), [&](int c) {
-          const auto s = static_cast<std::size_t>(c);
-          response[s] = W.p_shift[s] - p.cells[s];
-        });
       }
     }
     shift_current_ = true;
