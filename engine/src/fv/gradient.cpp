@@ -90,17 +90,22 @@ LeastSquaresGradient::LeastSquaresGradient(const mesher::Grid& grid,
 void LeastSquaresGradient::compute(std::span<const double> phi, std::span<const double> boundary,
                                    std::span<Eigen::Vector3d> gradient) const {
   parallel_for(grid_.cells, [&](int cell) {
-    const auto P = static_cast<std::size_t>(cell);
-    Eigen::Vector3d g = Eigen::Vector3d::Zero();
-    for (int k = offsets_[P]; k < offsets_[P + 1]; ++k) {
-      const auto ks = static_cast<std::size_t>(k);
-      const int o = other_[ks];
-      const double other =
-          o >= 0 ? phi[static_cast<std::size_t>(o)] : boundary[static_cast<std::size_t>(-1 - o)];
-      g += weights_[ks] * (other - phi[P]);
-    }
-    gradient[P] = g;
+    gradient[static_cast<std::size_t>(cell)] = at(cell, phi, boundary);
   });
+}
+
+Eigen::Vector3d LeastSquaresGradient::at(int cell, std::span<const double> phi,
+                                         std::span<const double> boundary) const {
+  const auto P = static_cast<std::size_t>(cell);
+  Eigen::Vector3d g = Eigen::Vector3d::Zero();
+  for (int k = offsets_[P]; k < offsets_[P + 1]; ++k) {
+    const auto ks = static_cast<std::size_t>(k);
+    const int o = other_[ks];
+    const double other =
+        o >= 0 ? phi[static_cast<std::size_t>(o)] : boundary[static_cast<std::size_t>(-1 - o)];
+    g += weights_[ks] * (other - phi[P]);
+  }
+  return g;
 }
 
 }  // namespace auvloop::engine::fv

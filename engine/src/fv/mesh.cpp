@@ -113,6 +113,11 @@ FaceBlocks::FaceBlocks(const mesher::Grid& grid) {
   }
 }
 
+Eigen::Vector3d Mesh::gradient_at(int cell, std::span<const double> cells,
+                                  std::span<const double> boundary) const {
+  return gradient_->at(cell, cells, boundary);
+}
+
 void Mesh::gradient(std::span<const double> cells, std::span<const double> boundary,
                     std::span<Eigen::Vector3d> out) const {
   const auto t0 = std::chrono::steady_clock::now();

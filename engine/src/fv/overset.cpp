@@ -146,6 +146,27 @@ Eigen::Vector3d Overset::interpolate(const Vector& u, int c) const {
   return v;
 }
 
+Eigen::Matrix3d Overset::interpolate_gradient(const Vector& u, const Vector& boundary,
+                                              int c) const {
+  const auto cu = static_cast<std::size_t>(c);
+  const int h = component_of(c);
+  Eigen::Matrix3d G = Eigen::Matrix3d::Zero();
+  for (int k = stencils_.offsets[cu]; k < stencils_.offsets[cu + 1]; ++k) {
+    const auto ku = static_cast<std::size_t>(k);
+    const int d = stencils_.donors[ku];
+    Eigen::Matrix3d Gd;
+    for (std::size_t i = 0; i < 3; ++i)
+      Gd.row(static_cast<Eigen::Index>(i)) = mesh_.gradient_at(d, u[i], boundary[i]).transpose();
+    const int g = donor_component_[ku];
+    if (g != h) {
+      const Eigen::Matrix3d& R = rotation(h, g);
+      Gd = R * Gd * R.transpose();
+    }
+    G += stencils_.weights[ku] * Gd;
+  }
+  return G;
+}
+
 double Overset::interpolate(const Vector& u, int c, std::size_t i) const {
   const auto cu = static_cast<std::size_t>(c);
   const int h = component_of(c);

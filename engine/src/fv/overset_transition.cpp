@@ -58,6 +58,7 @@ void Pimple::find_open_components() {
     fringe[static_cast<std::size_t>(overset_->component_of(c))] = 1;
   for (std::size_t k = 0; k < open.size(); ++k)
     if (open[k] != 0 && fringe[k] != 0) open_components_.push_back(static_cast<int>(k));
+  find_ring_faces();
 }
 
 void Pimple::find_reference_cell() {

@@ -57,6 +57,8 @@ OversetCoupling overset_coupling_from_string(const std::string& s) {
 
 const char* to_string(MassBalance b) {
   switch (b) {
+    case MassBalance::flux:
+      return "flux";
     case MassBalance::bordered:
       return "bordered";
     case MassBalance::response:
@@ -68,9 +70,10 @@ const char* to_string(MassBalance b) {
 }
 
 MassBalance mass_balance_from_string(const std::string& s) {
-  for (auto b : {MassBalance::bordered, MassBalance::response, MassBalance::off})
+  for (auto b : {MassBalance::flux, MassBalance::bordered, MassBalance::response, MassBalance::off})
     if (s == to_string(b)) return b;
-  throw std::invalid_argument("unknown overset mass balance '" + s + "' (bordered, response, off)");
+  throw std::invalid_argument("unknown overset mass balance '" + s +
+                              "' (flux, bordered, response, off)");
 }
 
 Pimple::Pimple(const Mesh& mesh, PimpleSettings settings)

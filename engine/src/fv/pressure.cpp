@@ -182,6 +182,13 @@ void Pimple::correct_pressure(StepReport& r, bool first, bool final) {
                       ? 0.0
                       : (fixed_u ? U.face(b) : cell_vector(HbyA, P)).dot(mesh_.area(f));
   });
+  // Overset, the flux-specified ring of the open components (overset_ring.cpp).
+  const bool ring =
+      overset_ != nullptr && !ring_faces_.empty() && settings_.mass_balance == MassBalance::flux;
+  if (ring) {
+    const ScopedSeconds clock(overset_seconds_);
+    specify_ring_flux();
+  }
   // c. and d.
   W.p_prev = p.cells;
   auto& net = W.net;
@@ -205,7 +212,7 @@ void Pimple::correct_pressure(StepReport& r, bool first, bool final) {
     // better than first order in mms-overset). Holding the fringe values through the loop
     // instead did not converge on mms-overset's finest level.
     const bool balance = overset_ != nullptr && !open_components_.empty() &&
-                         settings_.mass_balance != MassBalance::off;
+                         settings_.mass_balance != MassBalance::off && !ring;
     const bool bordered = balance && bordered_balance();
     if (balance && !bordered && !shift_current_) W.p_free = eq;  // only the response reads it
     if (implicit_overset()) {                                    // overset_implicit.cpp

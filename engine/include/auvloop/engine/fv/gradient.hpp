@@ -29,6 +29,9 @@ class LeastSquaresGradient {
   // phi: one value per cell; boundary: one value per boundary face (face index - internal faces).
   void compute(std::span<const double> phi, std::span<const double> boundary,
                std::span<Eigen::Vector3d> gradient) const;
+  // The same for one cell (the same sums in the same order: the same bits as compute()).
+  [[nodiscard]] Eigen::Vector3d at(int cell, std::span<const double> phi,
+                                   std::span<const double> boundary) const;
 
  private:
   const mesher::Grid& grid_;

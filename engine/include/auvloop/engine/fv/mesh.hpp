@@ -119,6 +119,9 @@ class Mesh {
   // Least-squares cell gradient of cell values with their boundary-face values.
   void gradient(std::span<const double> cells, std::span<const double> boundary,
                 std::span<Eigen::Vector3d> out) const;
+  // The same for one cell (the same bits as its entry of gradient()).
+  [[nodiscard]] Eigen::Vector3d gradient_at(int cell, std::span<const double> cells,
+                                            std::span<const double> boundary) const;
   // Wall-clock seconds spent in gradient() so far (profiling: the solver's phase split).
   [[nodiscard]] double gradient_seconds() const {
     return gradient_seconds_.load(std::memory_order_relaxed);

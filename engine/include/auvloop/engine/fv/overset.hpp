@@ -82,6 +82,11 @@ class Overset {
   // c's axes.
   using Vector = std::array<std::span<const double>, 3>;
   [[nodiscard]] Eigen::Vector3d interpolate(const Vector& u, int c) const;
+  // The gradient of u at fringe cell c (row i: grad u_i, in c's axes) interpolated from its
+  // donors' least-squares gradients (Mesh::gradient_at, with u's boundary values `boundary`),
+  // each turned into c's axes (R G R^T). Reproduces a gradient that is the same everywhere.
+  [[nodiscard]] Eigen::Matrix3d interpolate_gradient(const Vector& u, const Vector& boundary,
+                                                     int c) const;
   // Per fixed cell (fixed_cells() order): the interpolation for a fringe cell, `hole` (or the
   // field's own value if `hole` is NaN) for a hole cell.
   void fixed_values(std::span<const double> field, double hole, std::vector<double>& out) const;

@@ -36,12 +36,15 @@ OversetCoupling overset_coupling_from_string(const std::string& s);
 
 // The overset mass balance (overset_mass.cpp): the open components' interface flux to zero.
 enum class MassBalance {
+  flux,      // the open components' fringe ring takes its flux from the donors' velocity, the
+             // mismatch spread over its faces by area, no pressure shift (overset_ring.cpp;
+             // measured better on a steady case, worse on shedding: not the default)
   bordered,  // one bordered pressure solve (cg-amg with the explicit coupling; else response)
   response,  // one more pressure solve per open component for its response (the reference)
   off,       // none: the interpolation's mismatch leaves the flow at the interface (0.3 % of
              // the inflow on a coarse cylinder pair). For measuring the balance's cost only.
 };
-const char* to_string(MassBalance b);  // "bordered", "response", "off"
+const char* to_string(MassBalance b);  // "flux", "bordered", "response", "off"
 MassBalance mass_balance_from_string(const std::string& s);
 
 struct PimpleSettings {
@@ -268,6 +271,8 @@ class Pimple {
     // The bordered form (cg-amg): the border, its unknowns (the fringe shifts), a probe pressure.
     Border border;
     std::vector<double> lambda, probe, probe_flux;
+    // The flux-specified ring: its faces' fluxes, per open component their sum.
+    std::vector<double> ring_flux, ring_mismatch;
     // Overset re-assembly: the filled cells' values of one sweep, the cells that hold a value,
     // those still to fill and those filled in a sweep, the faces that came alive.
     std::vector<double> fill;
@@ -343,6 +348,18 @@ class Pimple {
   // nothing changed).
   std::pair<int, int> follow_assembly();
   void find_open_components();
+  // MassBalance::flux (overset_ring.cpp): the faces between an open component's active cells
+  // and its fringe ring (face order), per open component the ring's area, and the stage that
+  // sets their phiHbyA (and D_f = 0) in a corrector.
+  struct RingFace {
+    int face;
+    int column;   // the component's place in open_components_
+    double sign;  // +1 when the face's owner is the active cell (phi out of the active cells)
+  };
+  std::vector<RingFace> ring_faces_;
+  std::vector<double> ring_area_;
+  void find_ring_faces();
+  void specify_ring_flux();
   void find_reference_cell();  // an active cell: the last one while it stays active
   // Rigid motion (motion.cpp): at the start of initialise() and of every step, the grid flux,
   // the wall velocities, the far field's faces and whether any face fixes p.
