@@ -284,15 +284,16 @@ Result run_schaefer_turek_2d1(bool quick, bool overset) {
 // shedding settles (the last three periods within 1 % of the three before); St, cD max and
 // cL max within 4 %, 2 % and 15 % of the intervals' midpoints (measured 3.2 %, 1.4 % and 12.4 %
 // low there; all three converge into their intervals from below: docs/cfd.md).
-// Overset: the same on cylinder_overset_spec's pair. The background's cells are the full O-grid's
-// outer size (7.4 mm) on both levels: at m = 16 its own (14.7 mm, 3,768 cells) resolves the
-// wake too coarsely (St, cD max and cL max 3.2 %, 2.3 % and 27 % low; with 7.4 mm, 8,416 cells:
-// 0.2 % low, 1.2 % and 0.2 % high). Mass is conserved to the solver's tolerance in every step,
-// the impulsive start included: the interface flux at most 1e-6 of the inflow (without the
-// balance 0.97 of it leaves through the fringe in the first step, 0.80 in the fifth), the
-// continuity error at most 1e-7, an order above the pressure solver's relative tolerance (1e-8):
-// the first step's right side is the whole flow (measured 1.3e-8 there, 2e-11 once shedding).
-// The quick bounds are the single grid's.
+// Overset: the same on cylinder_overset_spec's pair. The background resolves the wake: quick,
+// 7.4 mm (the full O-grid's outer cell size; the m = 16 O-grid's own 14.7 mm, 3,768 cells, left
+// St, cD max and cL max 3.2 %, 2.3 % and 27 % low; with 7.4 mm, 8,416 cells: 0.2 % low, 1.2 %
+// and 0.2 % high); full, 3.7 mm (m = 32: cL max 0.941 on 7.4 mm, 0.983 on 4.9 mm, 0.9978 on
+// 3.7 mm, 33,400 cells, St and cD max inside the intervals on all three: docs/overset-flow.md).
+// Mass is conserved to the solver's tolerance in every step, the impulsive start included: the
+// interface flux at most 1e-6 of the inflow (without the balance 0.97 of it leaves through the
+// fringe in the first step, 0.80 in the fifth), the continuity error at most 1e-7, an order above
+// the pressure solver's relative tolerance (1e-8): the first step's right side is the whole flow
+// (measured 1.3e-8 there, 2e-11 once shedding). The quick bounds are the single grid's.
 Result run_schaefer_turek_2d2(bool quick, bool overset) {
   Result res{overset ? "schaefer-turek-2d2-overset" : "schaefer-turek-2d2", {}, {}};
   const int m = quick ? 16 : 32;
@@ -300,7 +301,7 @@ Result run_schaefer_turek_2d2(bool quick, bool overset) {
   c.grid.m = m;
   c.dt = quick ? 0.005 : 0.002;
   c.overset = overset;
-  if (overset) c.grid.background_spacing = 2 * std::numbers::pi * 0.15 / (4 * 32);
+  if (overset) c.grid.background_spacing = 2 * std::numbers::pi * 0.15 / (quick ? 128 : 256);
   const auto r = schaefer_turek_2d2(c);
   res.notes.push_back(fmt::format(
       "m = {} ({} cells{}), {} steps to t = 4 s, max Courant {:.2f}: St {:.4f}, cD max {:.4f}, "
