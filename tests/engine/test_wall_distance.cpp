@@ -17,6 +17,7 @@
 
 #include "auvloop/engine/turbulence/wall_distance.hpp"
 #include "auvloop/geometry/error.hpp"
+#include "auvloop/mesher/composite_grid.hpp"
 #include "auvloop/mesher/cylinder_grid.hpp"
 #include "auvloop/mesher/generators.hpp"
 #include "auvloop/mesher/wall_triangles.hpp"
@@ -225,4 +226,37 @@ TEST(TriangleDistance, RejectsAnEmptySetAndSkipsDegenerateTriangles) {
   EXPECT_DOUBLE_EQ(t.distance({0.25, 0.25, 2.0}), 2.0);
   EXPECT_NEAR(t.distance({-3, 0, 4}), 5.0, 1e-15);  // nearest: the vertex at the origin
   EXPECT_TRUE(t.closest_point({0.2, 0.1, -1}).isApprox(Eigen::Vector3d(0.2, 0.1, 0)));
+}
+
+// The same system merged into one composite mesh (as the flow solver runs it): each component's
+// cells see every component's walls through its axes relative to where it was merged, and the
+// distances are those of the grids taken apart, before and after the fin turns.
+TEST(WallDistances, OnACompositeMeshTheyAreThoseOfItsGridsTakenApart) {
+  TurningFin sys;
+  const mesher::Grid* grids[] = {&sys.channel, &sys.fin};
+  const auto composite = mesher::composite_grid(grids);
+  const engine::fv::Mesh merged(composite.grid);
+  turb::WallDistances walls(merged, composite.cell_offset);
+  const Eigen::Isometry3d fin0 = sys.fin.placement;
+  for (const double deg : {0.0, 20.0, -30.0}) {
+    sys.turn(deg * std::numbers::pi / 180);
+    const std::vector<Eigen::Isometry3d> axes{Eigen::Isometry3d::Identity(),
+                                              sys.fin.placement * fin0.inverse()};
+    if (deg != 0.0) (void)walls.update(axes);
+    const engine::fv::Mesh channel(sys.channel), fin(sys.fin);
+    const engine::fv::Mesh* meshes[] = {&channel, &fin};
+    const turb::WallDistances apart(meshes);
+    const auto all = walls.composite();
+    ASSERT_EQ(all.size(), static_cast<std::size_t>(merged.cells()));
+    for (int g = 0; g < 2; ++g)
+      for (int c = 0; c < meshes[g]->cells(); ++c) {
+        const auto at =
+            static_cast<std::size_t>(composite.cell_offset[static_cast<std::size_t>(g)] + c);
+        ASSERT_NEAR(all[at], apart.of(g)[static_cast<std::size_t>(c)], 1e-13)
+            << "grid " << g << ", cell " << c << ", " << deg << " deg";
+      }
+  }
+  EXPECT_THROW((void)walls.update(), std::invalid_argument);  // a composite needs its axes
+  const std::vector<Eigen::Isometry3d> one{Eigen::Isometry3d::Identity()};
+  EXPECT_THROW((void)walls.update(one), std::invalid_argument);
 }

@@ -20,10 +20,15 @@ PatchForce patch_force(const Pimple& flow, const std::string& patch,
   // Cell gradients of the velocity components, for the transposed part of the stress.
   const std::array<std::vector<Eigen::Vector3d>, 3> g{
       grad(mesh, flow.U.c[0]), grad(mesh, flow.U.c[1]), grad(mesh, flow.U.c[2])};
+  const Overset* overset = flow.overset();
+  const TurbulenceModel* model = flow.turbulence();
   PatchForce force;
   for (int i = 0; i < p.size; ++i) {
     const int f = p.start + i;
     const int b = f - mesh.internal_faces();
+    if (overset != nullptr && overset->status(mesh.owner(f)) == mesher::CellStatus::hole) continue;
+    const double nu =
+        model != nullptr ? model->nu_eff()[static_cast<std::size_t>(f)] : flow.settings().nu;
     const Eigen::Vector3d& S = mesh.area(f);
     const double dn = S.dot(mesh.d(f)) / S.norm();
     const Eigen::Vector3d pressure = flow.p.boundary[static_cast<std::size_t>(b)] * S;
@@ -32,8 +37,7 @@ PatchForce patch_force(const Pimple& flow, const std::string& patch,
     for (int k = 0; k < 3; ++k)
       transposed[k] = g[0][P][k] * S.x() + g[1][P][k] * S.y() + g[2][P][k] * S.z();
     const Eigen::Vector3d viscous =
-        flow.settings().nu *
-        ((flow.U.cell(mesh.owner(f)) - flow.U.face(b)) * S.norm() / dn - transposed);
+        nu * ((flow.U.cell(mesh.owner(f)) - flow.U.face(b)) * S.norm() / dn - transposed);
     const Eigen::Vector3d arm = mesh.face_centre(f) - moment_point;
     force.pressure += pressure;
     force.viscous += viscous;

@@ -122,14 +122,18 @@ int Overset::component_of(int c) const {
   return static_cast<int>(it - cell_offset_.begin()) - 1;
 }
 
-double Overset::interpolate(std::span<const double> field, int c) const {
+double Overset::interpolate(std::span<const double> field, int c, Bound bound) const {
   const auto cu = static_cast<std::size_t>(c);
   double v = 0;
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (int k = stencils_.offsets[cu]; k < stencils_.offsets[cu + 1]; ++k) {
     const auto ku = static_cast<std::size_t>(k);
-    v += stencils_.weights[ku] * field[static_cast<std::size_t>(stencils_.donors[ku])];
+    const double d = field[static_cast<std::size_t>(stencils_.donors[ku])];
+    v += stencils_.weights[ku] * d;
+    lo = std::min(lo, d);
+    hi = std::max(hi, d);
   }
-  return v;
+  return bound == Bound::donors ? std::clamp(v, lo, hi) : v;
 }
 
 Eigen::Vector3d Overset::interpolate(const Vector& u, int c) const {
@@ -220,26 +224,26 @@ void Overset::apply(const std::array<std::span<double>, 3>& u) const {
   });
 }
 
-void Overset::fixed_values(std::span<const double> field, double hole,
-                           std::vector<double>& out) const {
+void Overset::fixed_values(std::span<const double> field, double hole, std::vector<double>& out,
+                           Bound bound) const {
   out.resize(fixed_.size());
   parallel_for(static_cast<int>(fixed_.size()), [&](int j) {
     const auto i = static_cast<std::size_t>(j);
     const int c = fixed_[i];
     if (status(c) == CellStatus::fringe) {
-      out[i] = interpolate(field, c);
+      out[i] = interpolate(field, c, bound);
     } else {
       out[i] = std::isnan(hole) ? field[static_cast<std::size_t>(c)] : hole;
     }
   });
 }
 
-void Overset::apply(std::span<double> field, double hole) const {
+void Overset::apply(std::span<double> field, double hole, Bound bound) const {
   // In place: a fringe cell reads only active donors, which no iteration writes.
   parallel_for(static_cast<int>(fixed_.size()), [&](int j) {
     const int c = fixed_[static_cast<std::size_t>(j)];
     if (status(c) == CellStatus::fringe) {
-      field[static_cast<std::size_t>(c)] = interpolate(field, c);
+      field[static_cast<std::size_t>(c)] = interpolate(field, c, bound);
     } else if (!std::isnan(hole)) {
       field[static_cast<std::size_t>(c)] = hole;
     }

@@ -8,7 +8,8 @@
 //      levels) and p become the mean of their face neighbours that hold one (not a hole
 //      before, or filled in an earlier sweep), sweep by sweep outward from the flow, as
 //      OpenFOAM's overset does for such cells; a cell no sweep reaches keeps its hole values
-//      (U the grid velocity);
+//      (U the grid velocity); a turbulence model's transported fields and their old levels
+//      (TurbulenceModel::carried) are carried with U in steps 1 and 2;
 //   2. of those, the fringe cells take their donors' interpolations of U, its old level and p
 //      (the donors' old level at the new placement: displaced by one step's motion, closer than
 //      a neighbour mean); every other fringe cell keeps the values of the last step, the flow
@@ -88,14 +89,22 @@ std::pair<int, int> Pimple::follow_assembly() {
       pending.push_back(static_cast<int>(c));
   }
   const auto uncovered = static_cast<int>(pending.size());
-  // U_old_[1] is not among them: the step's shift of the levels drops it.
-  const std::array<std::vector<double>*, 7> levels{&U.c[0].cells, &U.c[1].cells, &U.c[2].cells,
-                                                   &U_old_[0][0], &U_old_[0][1], &U_old_[0][2],
-                                                   &p.cells};
+  // U_old_[1] is not among them: the step's shift of the levels drops it. A turbulence model's
+  // transported fields and their old levels likewise (turbulence_model.hpp, hook 9).
+  auto& levels = work_.levels;
+  levels = {&U.c[0].cells, &U.c[1].cells, &U.c[2].cells, &U_old_[0][0],
+            &U_old_[0][1], &U_old_[0][2], &p.cells};
+  const auto carried =
+      turbulence_ != nullptr ? turbulence_->carried() : std::vector<TurbulenceModel::Carried>{};
+  for (const auto& field : carried) {
+    levels.push_back(field.cells);
+    levels.push_back(field.old);
+  }
   const int internal = mesh_.internal_faces();
   auto& filled = work_.filled;
   auto& rest = work_.rest;
-  std::array<double, levels.size()> mean{};
+  auto& mean = work_.mean;
+  mean.resize(levels.size());
   for (int sweep = 0; sweep < fill_sweeps && !pending.empty(); ++sweep) {
     filled.clear();
     rest.clear();
@@ -143,6 +152,10 @@ std::pair<int, int> Pimple::follow_assembly() {
       U_old_[0][i][c] = u_old[static_cast<Eigen::Index>(i)];
     }
     p.cells[c] = overset_->interpolate(p.cells, ci);
+    for (const auto& field : carried) {
+      (*field.cells)[c] = overset_->interpolate(*field.cells, ci, Overset::Bound::donors);
+      (*field.old)[c] = overset_->interpolate(*field.old, ci, Overset::Bound::donors);
+    }
   }
   U.update_boundary(mesh_);
   p.update_boundary(mesh_);

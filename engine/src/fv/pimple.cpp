@@ -114,9 +114,14 @@ void Pimple::plan_implicit() {
 }
 
 void Pimple::set_overset(const Overset* overset) {
-  if (overset != nullptr && turbulence_ != nullptr)
-    throw std::logic_error("Pimple: a turbulence model on an overset mesh is not supported yet");
   overset_ = overset;
+  if (turbulence_ != nullptr) turbulence_->set_overset(overset_);
+}
+
+void Pimple::set_turbulence(TurbulenceModel* model) {
+  if (turbulence_ != nullptr && turbulence_ != model) turbulence_->set_overset(nullptr);
+  turbulence_ = model;
+  if (turbulence_ != nullptr) turbulence_->set_overset(overset_);
 }
 
 void Pimple::mask_faces(std::vector<double>& flux) const {
@@ -150,8 +155,6 @@ void Pimple::apply_slip() {
 }
 
 void Pimple::initialise() {
-  if (overset_ != nullptr && turbulence_ != nullptr)
-    throw std::logic_error("Pimple: a turbulence model on an overset mesh is not supported yet");
   reference_cell_ = 0;
   find_reference_cell();
   if (overset_ != nullptr) {

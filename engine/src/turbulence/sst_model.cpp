@@ -4,9 +4,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include <fmt/format.h>
+
+#include "auvloop/engine/fv/overset.hpp"
 
 #include "../fv/diagnosis.hpp"
 #include "../fv/parallel.hpp"
@@ -128,6 +131,11 @@ void SstModel::initialise(const fv::VectorField& U, std::span<const double>) {
   } else {
     k.cells = k0_;
     omega.cells = omega0_;
+  }
+  if (overset_ != nullptr) {
+    const double own = std::numeric_limits<double>::quiet_NaN();  // holes keep their values
+    overset_->apply(k.cells, own, fv::Overset::Bound::donors);
+    overset_->apply(omega.cells, own, fv::Overset::Bound::donors);
   }
   k.update_boundary(mesh_);
   omega.update_boundary(mesh_);
@@ -306,6 +314,13 @@ fv::TurbulenceReport SstModel::correct(const fv::TurbulenceInput& in) {
       eq_.source[s] = 0;
     });
     if (relax && settings_.relax < 1) eq_.relax(phi_field.cells, settings_.relax);
+    // Overset (turbulence_model.hpp, hook 8): after the relaxation, which would otherwise draw a
+    // fixed row towards its last value.
+    const double own = std::numeric_limits<double>::quiet_NaN();
+    if (overset_ != nullptr) {
+      overset_->fixed_values(phi_field.cells, own, fixed_, fv::Overset::Bound::donors);
+      eq_.fix_values(mesh_, overset_->fixed_cells(), fixed_);
+    }
     // The solve stops at |b - A phi| <= tol |b|, and |b| is the wall cells' (omega of 1e6-1e7
     // 1/s there, 1-100 in the free stream; k likewise over six decades): unscaled, a solve would
     // stop before it has touched the free stream, which then stays frozen at whatever the start
@@ -334,6 +349,8 @@ fv::TurbulenceReport SstModel::correct(const fv::TurbulenceInput& in) {
             }
         });
     report.bounded_cells += static_cast<long>(bounded[0]);
+    if (overset_ != nullptr)  // the donors' new values
+      overset_->apply(phi_field.cells, own, fv::Overset::Bound::donors);
     phi_field.update_boundary(mesh_);
   };
   rate_.resize(n);
@@ -421,11 +438,16 @@ void SstModel::check() const {
   }
 }
 
+bool SstModel::in_flow(const WallFace& w) const {
+  return overset_ == nullptr || overset_->status(mesh_.owner(w.face)) != mesher::CellStatus::hole;
+}
+
 std::vector<WallYPlus> SstModel::y_plus() const {
   std::vector<WallYPlus> out;
   const auto& patches = mesh_.grid().patches;
   std::vector<double> area_sum;
   for (const auto& w : walls_) {
+    if (!in_flow(w)) continue;
     const auto& name = patches[static_cast<std::size_t>(w.patch)].name;
     auto it = std::find_if(out.begin(), out.end(), [&](const auto& r) { return r.patch == name; });
     if (it == out.end()) {

@@ -9,6 +9,9 @@
 #include <stdexcept>
 #include <string>
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
 #include "../fv/parallel.hpp"
 #include "auvloop/mesher/wall_triangles.hpp"
 
@@ -29,37 +32,73 @@ bool same(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
 }
 }  // namespace
 
-WallDistances::WallDistances(std::span<const fv::Mesh* const> meshes)
-    : meshes_(meshes.begin(), meshes.end()) {
+namespace {
+// The bounding sphere of a wall group's triangles.
+std::pair<Eigen::Vector3d, double> sphere(const std::vector<geometry::Triangle>& triangles) {
+  Eigen::AlignedBox3d box;
+  for (const auto& t : triangles)
+    for (const auto& p : t) box.extend(p);
+  const Eigen::Vector3d centre = box.center();
+  double radius = 0;
+  for (const auto& t : triangles)
+    for (const auto& p : t) radius = std::max(radius, (p - centre).norm());
+  return {centre, radius};
+}
+}  // namespace
+
+WallDistances::WallDistances(std::span<const fv::Mesh* const> meshes) {
   // 1.
   std::string names;
-  for (std::size_t g = 0; g < meshes_.size(); ++g) {
-    const mesher::Grid& grid = meshes_[g]->source_grid();
+  for (std::size_t g = 0; g < meshes.size(); ++g) {
+    const mesher::Grid& grid = meshes[g]->source_grid();
+    parts_.push_back({meshes[g], 0, meshes[g]->cells()});
     names += (names.empty() ? "'" : ", '") + grid.name + "'";
     const auto triangles = mesher::wall_triangles(grid, Eigen::Isometry3d::Identity());
     if (triangles.empty()) continue;
-    Eigen::AlignedBox3d box;
-    for (const auto& t : triangles)
-      for (const auto& p : t) box.extend(p);
-    const Eigen::Vector3d centre = box.center();
-    double radius = 0;
-    for (const auto& t : triangles)
-      for (const auto& p : t) radius = std::max(radius, (p - centre).norm());
+    const auto [centre, radius] = sphere(triangles);
     groups_.push_back({static_cast<int>(g), geometry::TriangleDistance(triangles), centre, radius});
   }
   if (groups_.empty())
     throw std::invalid_argument("wall distance: no wall patch face in the grids " + names);
+  start();
+}
+
+WallDistances::WallDistances(const fv::Mesh& composite, std::span<const int> cell_offset) {
+  const mesher::Grid& grid = composite.source_grid();
+  for (std::size_t k = 0; k < cell_offset.size(); ++k) {
+    const int first = cell_offset[k];
+    const int end = k + 1 < cell_offset.size() ? cell_offset[k + 1] : composite.cells();
+    if (first < 0 || end < first || end > composite.cells() || (k == 0 && first != 0))
+      throw std::invalid_argument(
+          fmt::format("wall distance: the component offsets {} do not split the {} cells of '{}'",
+                      fmt::join(cell_offset, ", "), composite.cells(), grid.name));
+    parts_.push_back({&composite, first, end - first});
+    const auto triangles = mesher::wall_triangles(grid, Eigen::Isometry3d::Identity(), first, end);
+    if (triangles.empty()) continue;
+    const auto [centre, radius] = sphere(triangles);
+    groups_.push_back({static_cast<int>(k), geometry::TriangleDistance(triangles), centre, radius});
+  }
+  if (parts_.empty())
+    throw std::invalid_argument("wall distance: a composite of '" + grid.name +
+                                "' needs at least one component");
+  if (groups_.empty())
+    throw std::invalid_argument("wall distance: no wall patch face in '" + grid.name + "'");
+  axes_.assign(parts_.size(), Eigen::Isometry3d::Identity());
+  start();
+}
+
+void WallDistances::start() {
   const std::size_t H = groups_.size();
-  taken_at_.resize(meshes_.size());
-  entries_.resize(meshes_.size());
-  distance_.resize(meshes_.size());
-  for (std::size_t g = 0; g < meshes_.size(); ++g) {
-    const auto n = static_cast<std::size_t>(meshes_[g]->cells());
+  taken_at_.resize(parts_.size());
+  entries_.resize(parts_.size());
+  distance_.resize(parts_.size());
+  for (std::size_t g = 0; g < parts_.size(); ++g) {
+    const auto n = static_cast<std::size_t>(parts_[g].cells);
     taken_at_[g].assign(H, Eigen::Isometry3d::Identity());
     entries_[g].assign(n * H, Entry{});
     distance_[g].assign(n, 0.0);
   }
-  pending_.assign(meshes_.size(), false);
+  pending_.assign(parts_.size(), false);
   // 2 and 3 with every pair new.
   initial_ = refresh(true, {});
 }
@@ -68,33 +107,59 @@ std::span<const double> WallDistances::of(int grid) const {
   return distance_.at(static_cast<std::size_t>(grid));
 }
 
+std::vector<double> WallDistances::composite() const {
+  std::vector<double> out;
+  for (const auto& d : distance_) out.insert(out.end(), d.begin(), d.end());
+  return out;
+}
+
+const Eigen::Isometry3d& WallDistances::placement(std::size_t g) const {
+  return axes_.empty() ? parts_[g].mesh->source_grid().placement : axes_[g];
+}
+
+void WallDistances::check_masks(std::span<const std::vector<char>> needed) const {
+  if (needed.empty()) return;
+  if (needed.size() != parts_.size())
+    throw std::invalid_argument("wall distance: " + std::to_string(needed.size()) +
+                                " cell masks for " + std::to_string(parts_.size()) + " grids");
+  for (std::size_t g = 0; g < parts_.size(); ++g)
+    if (needed[g].size() != static_cast<std::size_t>(parts_[g].cells))
+      throw std::invalid_argument(
+          fmt::format("wall distance: the cell mask of grid {} ('{}') has {} entries for {} cells",
+                      g, parts_[g].mesh->source_grid().name, needed[g].size(), parts_[g].cells));
+}
+
 WallDistances::Work WallDistances::update(std::span<const std::vector<char>> needed) {
-  if (!needed.empty()) {
-    if (needed.size() != meshes_.size())
-      throw std::invalid_argument("wall distance: " + std::to_string(needed.size()) +
-                                  " cell masks for " + std::to_string(meshes_.size()) + " grids");
-    for (std::size_t g = 0; g < meshes_.size(); ++g)
-      if (needed[g].size() != static_cast<std::size_t>(meshes_[g]->cells()))
-        throw std::invalid_argument("wall distance: the cell mask of grid '" +
-                                    meshes_[g]->source_grid().name + "' has " +
-                                    std::to_string(needed[g].size()) + " entries for " +
-                                    std::to_string(meshes_[g]->cells()) + " cells");
-  }
+  if (!axes_.empty())
+    throw std::invalid_argument("wall distance: a composite's update needs its components' axes");
+  check_masks(needed);
+  return refresh(false, needed);
+}
+
+WallDistances::Work WallDistances::update(std::span<const Eigen::Isometry3d> axes,
+                                          std::span<const std::vector<char>> needed) {
+  if (axes_.empty())
+    throw std::invalid_argument("wall distance: axes are for a composite mesh's components");
+  if (axes.size() != axes_.size())
+    throw std::invalid_argument(
+        fmt::format("wall distance: {} axes for {} components", axes.size(), axes_.size()));
+  check_masks(needed);
+  axes_.assign(axes.begin(), axes.end());
   return refresh(false, needed);
 }
 
 WallDistances::Work WallDistances::refresh(bool all, std::span<const std::vector<char>> needed) {
   Work work;
   const std::size_t H = groups_.size();
-  for (std::size_t g = 0; g < meshes_.size(); ++g) {
-    const fv::Mesh& mesh = *meshes_[g];
-    const Eigen::Isometry3d& P_g = mesh.source_grid().placement;
+  for (std::size_t g = 0; g < parts_.size(); ++g) {
+    const Part& part = parts_[g];
+    const Eigen::Isometry3d& P_g = placement(g);
     // The relative placements now, and which of them changed.
     std::vector<Eigen::Isometry3d> T(H);
     std::vector<char> changed(H, 0);
     bool any = false;
     for (std::size_t h = 0; h < H; ++h) {
-      const auto& P_h = meshes_[static_cast<std::size_t>(groups_[h].grid)]->source_grid().placement;
+      const auto& P_h = placement(static_cast<std::size_t>(groups_[h].grid));
       T[h] = P_h.inverse() * P_g;
       changed[h] = all || !same(T[h], taken_at_[g][h]) ? 1 : 0;
       any = any || changed[h] != 0;
@@ -110,10 +175,10 @@ WallDistances::Work WallDistances::refresh(bool all, std::span<const std::vector
     auto& distance = distance_[g];
     // Counts are sums of integers, exact in any order.
     const auto counts = fv::parallel_sum<2>(
-        mesh.cells(),
+        part.cells,
         [&](int b, int e, std::array<double, 2>& count) {
           for (auto c = static_cast<std::size_t>(b); c < static_cast<std::size_t>(e); ++c) {
-            const Eigen::Vector3d& x = mesh.centre(static_cast<int>(c));
+            const Eigen::Vector3d& x = part.mesh->centre(part.first + static_cast<int>(c));
             Entry* row = &entries[c * H];
             // Step 4: the new bounds of the changed pairs.
             for (std::size_t h = 0; h < H; ++h) {

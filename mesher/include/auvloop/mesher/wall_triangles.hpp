@@ -13,5 +13,9 @@ namespace auvloop::mesher {
 // decomposition compute_geometry uses), mapped by `to` from the grid's own frame (the identity: in
 // that frame; g.placement: in the body frame).
 std::vector<geometry::Triangle> wall_triangles(const Grid& g, const Eigen::Isometry3d& to);
+// The same for the wall faces whose cell lies in [first_cell, end_cell) (one component of a
+// composite grid).
+std::vector<geometry::Triangle> wall_triangles(const Grid& g, const Eigen::Isometry3d& to,
+                                               int first_cell, int end_cell);
 
 }  // namespace auvloop::mesher

@@ -1,14 +1,21 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Force and moment of the fluid on wall patches, per unit density (the solver's p is kinematic):
 //   pressure  dF_f = p_f S_f                         (S_f points out of the fluid, into the wall)
-//   viscous   dF_f = nu [(U_P - U_wall) |S_f| / dn - (grad U)_P^T . S_f]
-//                                                    (dn: normal distance of the cell centre)
+//   viscous   dF_f = nu_f [(U_P - U_wall) |S_f| / dn - (grad U)_P^T . S_f]
+//                                                    (dn: normal distance of the cell centre;
+//                                                    nu_f the turbulence model's nu_eff of the
+//                                                    face, nu + nu_t,w: the law of the wall's
+//                                                    shear at any y+; nu when laminar)
 //   moment    M = sum_f (x_f - x_ref) x dF_f         about a reference point x_ref
 // The viscous part is -nu (grad U + grad U^T) . S with the normal derivative one-sided (as
 // OpenFOAM's wallShearStress): exact for velocity linear in the wall distance, first order
 // otherwise. The transposed part vanishes on a wall at rest (U = 0 along it, and du_n/dn = 0 by
 // continuity) but not on a rotating one (Taylor-Couette: without it the torque is 5/8 of the
 // exact value for R2 = 2 R1). p_f is the boundary value.
+// On an overset mesh the wall faces whose cell is a hole are not in the flow (a fin's root inside
+// the hull) and are left out. Every other wall face counts once: in the systems auvloop builds
+// each wall surface belongs to one grid (the hull's to the hull grid, a fin's to its fin grid);
+// a surface covered by the walls of two grids (a collar grid) would be counted twice.
 // Multiply by the density for newtons and newton-metres.
 #pragma once
 

@@ -76,8 +76,14 @@ class Overset {
   [[nodiscard]] std::span<const int> active_cells() const { return active_cells_; }
   // Whether face f carries flux: one of its cells (the owner of a boundary face) is active.
   [[nodiscard]] bool live(int f) const { return live_[static_cast<std::size_t>(f)] != 0; }
+  // How a scalar is interpolated: `linear` the stencil's weights as they are (exact for a linear
+  // field; a weight may be negative); `donors` the same value clipped to the range of the
+  // donors' values, so that a positive field (k, omega) stays positive where it is steep (at a
+  // wall) and the stencil's negative weights would overshoot.
+  enum class Bound { linear, donors };
   // The value of `field` interpolated at fringe cell c from its donors.
-  [[nodiscard]] double interpolate(std::span<const double> field, int c) const;
+  [[nodiscard]] double interpolate(std::span<const double> field, int c,
+                                   Bound bound = Bound::linear) const;
   // The vector (u[0], u[1], u[2]) interpolated at fringe cell c, each donor's value turned into
   // c's axes.
   using Vector = std::array<std::span<const double>, 3>;
@@ -89,12 +95,13 @@ class Overset {
                                                      int c) const;
   // Per fixed cell (fixed_cells() order): the interpolation for a fringe cell, `hole` (or the
   // field's own value if `hole` is NaN) for a hole cell.
-  void fixed_values(std::span<const double> field, double hole, std::vector<double>& out) const;
+  void fixed_values(std::span<const double> field, double hole, std::vector<double>& out,
+                    Bound bound = Bound::linear) const;
   // The same for component i of a vector field (a hole cell keeps its own value).
   void fixed_values(const Vector& u, std::size_t i, std::vector<double>& out) const;
   // Sets the fringe cells of `field` to their interpolations (the donors are active: one pass),
   // and the hole cells to `hole` unless it is NaN.
-  void apply(std::span<double> field, double hole) const;
+  void apply(std::span<double> field, double hole, Bound bound = Bound::linear) const;
   // Sets the fringe cells of a vector field to their interpolations (hole cells unchanged).
   void apply(const std::array<std::span<double>, 3>& u) const;
   // The implicit coupling of `eq` (overset_implicit.cpp) for a scalar field: the fringe values

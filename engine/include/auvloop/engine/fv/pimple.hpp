@@ -148,12 +148,13 @@ class Pimple {
   void slip(const std::string& patch);
   // Attaches a turbulence model (turbulence_model.hpp; not owned, it must outlive this flow;
   // nullptr detaches): momentum then diffuses with its nu_eff, and its correct() runs after the
-  // pressure correctors of every outer iteration. Before initialise().
-  void set_turbulence(TurbulenceModel* model) { turbulence_ = model; }
+  // pressure correctors of every outer iteration. On an overset mesh the model rides on the
+  // coupling (turbulence_model.hpp, hook 8). Before initialise().
+  void set_turbulence(TurbulenceModel* model);
   [[nodiscard]] TurbulenceModel* turbulence() const { return turbulence_; }
   // Couples the components of a composite (overset) mesh explicitly (overset.hpp states the
-  // algorithm; not owned, it must outlive this flow; nullptr detaches). Before initialise(); a
-  // turbulence model does not ride on the coupling yet (std::logic_error).
+  // algorithm; not owned, it must outlive this flow; nullptr detaches), a turbulence model's
+  // transported fields with it. Before initialise().
   void set_overset(const Overset* overset);
   [[nodiscard]] const Overset* overset() const { return overset_; }
   // Overset re-assembly: when the grids move against each other, the driver re-assembles at the
@@ -276,6 +277,8 @@ class Pimple {
     // Overset re-assembly: the filled cells' values of one sweep, the cells that hold a value,
     // those still to fill and those filled in a sweep, the faces that came alive.
     std::vector<double> fill;
+    std::vector<std::vector<double>*> levels;  // the fields carried, their old levels, p
+    std::vector<double> mean;
     std::vector<char> holds;
     std::vector<int> pending, filled, rest, born;
   };

@@ -10,7 +10,19 @@
 //   5. save() / restore()    with the step's last good fields (a diverged step restores both);
 //   6. check()               after the step: throws std::runtime_error naming the first cell
 //                            with a non-finite or non-physical value;
-//   7. state()               the arrays a checkpoint stores.
+//   7. state()               the arrays a checkpoint stores;
+//   8. set_overset(o)        Pimple::set_overset / set_turbulence on an overset mesh (o null:
+//                            none): the model's transported fields ride on the coupling as a
+//                            scalar does (overset.hpp): explicitly, fringe rows fixed to the
+//                            donors' interpolation of the current values (bounded by the donors'
+//                            range, Overset::Bound::donors: k and omega stay positive where they
+//                            are steep) and hole rows to their
+//                            own, after any under-relaxation, and the fringe cells set to their
+//                            interpolation again after each solve;
+//   9. carried()             the transported fields' cells and their old time level (n - 1 when
+//                            the step's re-assembly stage runs, before begin_step), which Pimple's
+//                            re-assembly carries onto new cell statuses with U
+//                            (overset_transition.cpp; interpolated bounded, as in hook 8).
 // The flow never owns the model; the model must outlive the Pimple it is attached to.
 #pragma once
 
@@ -24,6 +36,8 @@
 #include "auvloop/engine/fv/operators.hpp"
 
 namespace auvloop::engine::fv {
+
+class Overset;
 
 // What correct() is given: the flow after its pressure correctors.
 struct TurbulenceInput {
@@ -73,6 +87,12 @@ class TurbulenceModel {
   // values, old time levels, nu_eff), in a fixed order and of sizes fixed by the grid: what
   // Pimple's checkpoint stores so that a restart continues bitwise.
   [[nodiscard]] virtual std::vector<std::vector<double>*> state() = 0;
+  virtual void set_overset(const Overset* overset) = 0;
+  struct Carried {
+    std::vector<double>* cells = nullptr;  // one per cell
+    std::vector<double>* old = nullptr;    // the time level the next step keeps as n - 1
+  };
+  [[nodiscard]] virtual std::vector<Carried> carried() = 0;
 };
 
 }  // namespace auvloop::engine::fv

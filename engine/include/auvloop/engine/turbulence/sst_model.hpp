@@ -120,7 +120,13 @@ class SstModel final : public fv::TurbulenceModel {
             &k_old_[0], &k_old_[1],  &omega_old_[0], &omega_old_[1],  &nu_eff_};
   }
 
-  // Per wall patch, from the last correct() (or initialise()).
+  void set_overset(const fv::Overset* overset) override { overset_ = overset; }
+  [[nodiscard]] std::vector<Carried> carried() override {
+    return {{&k.cells, &k_old_[0]}, {&omega.cells, &omega_old_[0]}};
+  }
+
+  // Per wall patch, from the last correct() (or initialise()); on an overset mesh the wall faces
+  // in the flow (their cell not a hole).
   [[nodiscard]] std::vector<WallYPlus> y_plus() const;
   // Per cell: the blending function F1 of the last correct().
   [[nodiscard]] std::span<const double> f1() const { return F1_; }
@@ -140,7 +146,12 @@ class SstModel final : public fv::TurbulenceModel {
   void update_nu_t();
   void strain(const fv::VectorField& U, const std::array<std::vector<Eigen::Vector3d>, 3>* given);
 
+  // Whether wall face w lies in the flow (no overset mesh, or its cell is not a hole).
+  [[nodiscard]] bool in_flow(const WallFace& w) const;
+
   const fv::Mesh& mesh_;
+  const fv::Overset* overset_ = nullptr;
+  std::vector<double> fixed_;  // the overset's fixed values of one equation (scratch)
   SstSettings settings_;
   std::vector<double> d_;  // wall distance per cell
   std::vector<WallFace> walls_;

@@ -27,6 +27,10 @@
 //      entries of g's cells for h become the new bounds, then step 3 for every cell of g.
 //      Unchanged pairs keep their entries, so a fin turning re-measures only the cells the fin may
 //      now be nearest to, and a whole-system motion (every T unchanged) re-measures nothing.
+// A composite mesh (the overset system merged into one mesh, fv::VehicleOverset and
+// fv::MovingOverset) is taken component by component: component k's cells and the wall faces of
+// those cells are a grid of their own, at their merged positions, whose placement is the
+// component's axes relative to where it was merged (update(axes)), so the same steps apply.
 // Every cell's entries depend on that cell alone, in parallel over cells: the distances do not
 // depend on the number of threads, and after any sequence of updates they are the ones a new
 // WallDistances at the final placements computes (bit for bit, unless a relative placement moved
@@ -49,9 +53,16 @@ class WallDistances {
   // meshes must outlive this object; their grids' placements are read at every update().
   // Throws std::invalid_argument naming the grids when none of them has a wall patch face.
   explicit WallDistances(std::span<const fv::Mesh* const> meshes);
+  // The composite mesh of an overset system, component k its cells [cell_offset[k],
+  // cell_offset[k + 1]) (the last to the end), every component's axes the identity (as merged).
+  // The mesh must outlive this object. Throws std::invalid_argument when the offsets do not
+  // split the mesh or no component has a wall face.
+  WallDistances(const fv::Mesh& composite, std::span<const int> cell_offset);
 
-  // Per cell of meshes[grid] (m).
+  // Per cell of meshes[grid] (m), or of component `grid` of a composite.
   [[nodiscard]] std::span<const double> of(int grid) const;
+  // A composite's: per cell of the composite mesh (its components' in turn).
+  [[nodiscard]] std::vector<double> composite() const;
 
   // What an update (or the construction) measured.
   struct Work {
@@ -65,6 +76,12 @@ class WallDistances {
   // needed again later is measured then; the distance of a cell not needed is its last one.
   // Throws std::invalid_argument when the masks do not match the grids.
   Work update(std::span<const std::vector<char>> needed = {});
+  // A composite's step 4: `axes` per component, its axes relative to where it was merged (the
+  // identity for a component that has not moved: fv::MovingOverset::axes, or
+  // fv::VehicleOverset::fin_axes and the body's identity); `needed` as above, one mask per
+  // component. Throws std::invalid_argument on a wrong count, or when this is not a composite's.
+  Work update(std::span<const Eigen::Isometry3d> axes,
+              std::span<const std::vector<char>> needed = {});
   // The construction's work (every pair changed: one bound per entry).
   [[nodiscard]] const Work& initial_work() const { return initial_; }
 
@@ -79,9 +96,19 @@ class WallDistances {
     double value = 0;
     bool exact = false;
   };
+  void start();  // steps 2 and 3 for every part, after the groups
   Work refresh(bool all, std::span<const std::vector<char>> needed);
+  void check_masks(std::span<const std::vector<char>> needed) const;
+  // Grid g's placement: its mesh's grid's, or a composite's component axes.
+  [[nodiscard]] const Eigen::Isometry3d& placement(std::size_t g) const;
 
-  std::vector<const fv::Mesh*> meshes_;
+  // Per grid: its mesh and its cells there (a composite's component: a range of one mesh).
+  struct Part {
+    const fv::Mesh* mesh = nullptr;
+    int first = 0, cells = 0;
+  };
+  std::vector<Part> parts_;
+  std::vector<Eigen::Isometry3d> axes_;  // a composite's; empty otherwise
   std::vector<Group> groups_;
   // Per grid g: T_hg per group h at which its entries were taken; entries cell-major, one per
   // group; the distances.
