@@ -84,6 +84,10 @@ TEST(FV_SUITE, PitchingFoil) {
 TEST(FV_SUITE, RemusOverset) {
   run("remus-overset");
 }
+// The same with SST k-omega on the coupling (quick about 17 s; full 1,500 steps).
+TEST(FV_SUITE, RemusOversetSst) {
+  run("remus-overset-sst");
+}
 TEST(FV_SUITE, SchaeferTurek2d2Shedding) {
   run("schaefer-turek-2d2");
 }

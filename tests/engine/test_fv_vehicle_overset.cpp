@@ -168,10 +168,14 @@ TEST(VehicleOverset, EveryWallFaceIsAnActiveCellsSoEachPatchCountsItsWallOnce) {
 }
 
 // The REMUS system with every fin turning (the mesher's update each step, cells coming out of
-// holes, the fins' axes turning, the bordered mass balance): the fields after 2 straight and 3
-// turning steps are bitwise the same on one and on two threads.
-TEST(VehicleOverset, FinsTurningRunIsBitwiseTheSameOnOneAndTwoThreads) {
-  const auto run = [](int threads) {
+// holes, the fins' axes turning, the bordered mass balance), laminar and with SST (k and omega
+// on the coupling, the wall distances followed): the fields after 2 straight and 3 turning steps
+// are bitwise the same on one and on two threads.
+class FinsTurning : public testing::TestWithParam<bool> {};
+INSTANTIATE_TEST_SUITE_P(VehicleOverset, FinsTurning, testing::Values(false, true),
+                         [](const auto& p) { return p.param ? "Sst" : "Laminar"; });
+TEST_P(FinsTurning, RunIsBitwiseTheSameOnOneAndTwoThreads) {
+  const auto run = [this](int threads) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                               static_cast<std::size_t>(threads));
     validation::RemusOversetRun r;
@@ -179,6 +183,7 @@ TEST(VehicleOverset, FinsTurningRunIsBitwiseTheSameOnOneAndTwoThreads) {
     r.turning = 3 * r.dt;
     r.outer_iterations = 2;
     r.keep_fields = true;
+    r.sst = GetParam();
     return validation::remus_overset(r);
   };
   const auto a = run(1), b = run(2);

@@ -111,6 +111,26 @@ void SstModel::inlet(const std::string& patch) {
   omega.fix(mesh_, patch, settings_.freestream.omega);
 }
 
+void SstModel::far_field(const std::string& patch) {
+  k.mix(mesh_, patch, settings_.freestream.k);
+  omega.mix(mesh_, patch, settings_.freestream.omega);
+  far_field_.push_back(fv::patch_index(mesh_, patch));
+}
+
+void SstModel::switch_far_field(std::span<const double> phi) {
+  if (far_field_.empty()) return;
+  for (auto* field : {&k, &omega}) {
+    for (int pi : far_field_) {
+      const auto& patch = mesh_.grid().patches[static_cast<std::size_t>(pi)];
+      auto& bc = field->bcs[static_cast<std::size_t>(pi)];
+      for (int i = 0; i < patch.size; ++i)
+        bc.fraction[static_cast<std::size_t>(i)] =
+            phi[static_cast<std::size_t>(patch.start + i)] <= 0 ? 1.0 : 0.0;
+    }
+    field->update_boundary(mesh_);
+  }
+}
+
 void SstModel::start_from(std::vector<double> k0, std::vector<double> omega0) {
   const auto n = static_cast<std::size_t>(mesh_.cells());
   require(k0.size() == n && omega0.size() == n,
@@ -124,7 +144,7 @@ void SstModel::start_from(std::vector<double> k0, std::vector<double> omega0) {
   omega0_ = std::move(omega0);
 }
 
-void SstModel::initialise(const fv::VectorField& U, std::span<const double>) {
+void SstModel::initialise(const fv::VectorField& U, std::span<const double> phi) {
   if (k0_.empty()) {
     std::fill(k.cells.begin(), k.cells.end(), settings_.freestream.k);
     std::fill(omega.cells.begin(), omega.cells.end(), settings_.freestream.omega);
@@ -139,6 +159,7 @@ void SstModel::initialise(const fv::VectorField& U, std::span<const double>) {
   }
   k.update_boundary(mesh_);
   omega.update_boundary(mesh_);
+  switch_far_field(phi);
   strain(U, nullptr);
   wall_treatment(U);
   update_nu_t();
@@ -253,7 +274,9 @@ fv::TurbulenceReport SstModel::correct(const fv::TurbulenceInput& in) {
   const auto n = static_cast<std::size_t>(mesh_.cells());
   const int internal = mesh_.internal_faces();
   fv::TurbulenceReport report;
-  // 1. Gradients, S^2, F1 and the blended constants' diffusivities.
+  // 1. Gradients, S^2, F1 and the blended constants' diffusivities (the far field's faces
+  //    switched by the present flux first).
+  switch_far_field(in.phi);
   strain(*in.U, in.grad_U);
   Scratch<Eigen::Vector3d> gk(n), gw(n);
   mesh_.gradient(k.cells, k.boundary, *gk);

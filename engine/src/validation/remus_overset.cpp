@@ -2,23 +2,29 @@
 // remus-overset (issue 17; validation.hpp): the REMUS 100 overset system in the flow, the
 // acceptance run of the moving-overset solver.
 //   1. the vehicle's grid system of a mesh preset, assembled at zero deflection
-//      (fv::VehicleOverset); laminar, the body moving at `speed` along +x through water at rest
-//      (the far field on the background's outer faces, every wall moving with its grid);
+//      (fv::VehicleOverset); laminar or SST (k and omega on the coupling, the wall distance of
+//      the composite mesh, turbulence::WallDistances), the body moving at `speed` along +x
+//      through water at rest (the far field on the background's outer faces, every wall moving
+//      with its grid);
 //   2. `straight` seconds with the fins at rest, then `turning` seconds with the turning fin's
 //      (or every fin's) deflection growing by fin_rate dt a step: the mesher's incremental
 //      update at the new deflections (an orphan throws: no fringe cell is ever without active
-//      donors), the fin's axes turning about its post at fin_rate (VehicleOverset::motions),
+//      donors), the wall distances re-measured where a fin may now be nearest (cells in the
+//      flow only), the fin's axes turning about its post at fin_rate (VehicleOverset::motions),
 //      Pimple::step carrying the fields onto the new statuses;
 //   3. per step the continuity error over the active cells and the interface flux (Pimple's
 //      report) and the hull's force (fv::patch_force on "hull/hull"); a DivergenceError ends the
 //      run and is reported, with the steps done.
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
 #include "auvloop/engine/fv/forces.hpp"
 #include "auvloop/engine/fv/vehicle_overset.hpp"
+#include "auvloop/engine/turbulence/sst_model.hpp"
+#include "auvloop/engine/turbulence/wall_distance.hpp"
 #include "auvloop/engine/validation.hpp"
 #include "auvloop/geometry/vehicle.hpp"
 #include "auvloop/mesher/mesh_settings.hpp"
@@ -55,6 +61,33 @@ RemusOversetResult remus_overset(const RemusOversetRun& run) {
       flow.far_field(patch.name);
     }
   }
+  std::unique_ptr<turbulence::WallDistances> walls;
+  std::unique_ptr<turbulence::SstModel> sst;
+  if (run.sst) {
+    walls = std::make_unique<turbulence::WallDistances>(mesh, sys.composite().cell_offset);
+    turbulence::SstSettings ts;
+    ts.nu = s.nu;
+    ts.freestream = turbulence::freestream_from_intensity(run.speed, 0.01, 10, s.nu);
+    sst = std::make_unique<turbulence::SstModel>(mesh, walls->composite(), ts);
+    for (const auto& patch : mesh.grid().patches)
+      if (patch.name.rfind("background/", 0) == 0 && patch.type != mesher::PatchType::overset)
+        sst->far_field(patch.name);
+    flow.set_turbulence(sst.get());
+  }
+  // The wall distances at the fins' present axes, for the cells in the flow.
+  const auto follow_walls = [&] {
+    std::vector<Eigen::Isometry3d> axes(static_cast<std::size_t>(sys.overset().components()),
+                                        Eigen::Isometry3d::Identity());
+    for (int k = 0; k < sys.fins(); ++k)
+      axes[static_cast<std::size_t>(fv::VehicleOverset::fin_component(k))] = sys.fin_axes(k);
+    const auto& offset = sys.composite().cell_offset;
+    std::vector<std::vector<char>> needed(offset.size());
+    for (std::size_t g = 0; g < offset.size(); ++g)
+      for (int c = 0; c < sys.composite().cells_of(g); ++c)
+        needed[g].push_back(sys.overset().status(offset[g] + c) != mesher::CellStatus::hole);
+    (void)walls->update(axes, needed);
+    sst->set_wall_distance(walls->composite());
+  };
   fv::FrameMotion body;
   body.velocity = Eigen::Vector3d(run.speed, 0, 0);
   std::vector<double> deflection = sys.deflections();
@@ -77,6 +110,7 @@ RemusOversetResult remus_overset(const RemusOversetRun& run) {
         for (std::size_t k = 0; k < fins; ++k) deflection[k] += rates[k] * run.dt;
         const auto ta = std::chrono::steady_clock::now();
         sys.set_fins(deflection);
+        if (sst) follow_walls();
         reassembly = seconds_since(ta);
         r.assembly_seconds += reassembly;
       }
@@ -101,6 +135,12 @@ RemusOversetResult remus_overset(const RemusOversetRun& run) {
     r.t.push_back(flow.time());
     r.drag.push_back(-fv::patch_force(flow, fv::VehicleOverset::hull_wall()).total().x());
   }
+  if (sst)
+    for (const auto& y : sst->y_plus())
+      if (y.patch == fv::VehicleOverset::hull_wall()) {
+        r.hull_y_plus_mean = y.mean;
+        r.hull_y_plus_max = y.max;
+      }
   if (run.keep_fields) {
     for (std::size_t i = 0; i < 3; ++i) r.U[i] = flow.U.c[i].cells;
     r.p = flow.p.cells;

@@ -179,7 +179,7 @@ PitchingFoilResult pitching_foil(const mesher::FoilOversetSpec& g, bool overset,
                                  double omega, double dt, double end_time);
 
 // remus-overset (remus_overset.cpp): the REMUS 100 overset system of a mesh preset (hull, four
-// fin grids, background) in the flow, laminar (nu = 1e-6 m^2/s), the body moving at `speed`
+// fin grids, background) in the flow, laminar or SST (nu = 1e-6 m^2/s), the body moving at `speed`
 // (m/s) straight ahead through water at rest from an impulsive start: `straight` seconds with
 // the fins at rest, then `turning` seconds with one fin or every fin turning at `fin_rate`
 // (rad/s), steps of dt. Per step: the continuity error over the active cells, the largest
@@ -194,6 +194,10 @@ struct RemusOversetRun {
   int outer_iterations = 3;
   fv::OversetCoupling coupling = fv::OversetCoupling::lagged;
   fv::MassBalance mass_balance = fv::MassBalance::bordered;
+  // SST k-omega (default wall treatment; free stream 1 % intensity, nu_t / nu = 10, on the
+  // far field's inflow faces, zero gradient on its outflow faces) with the composite's wall
+  // distances, kept current as the fins turn; otherwise laminar.
+  bool sst = false;
   bool keep_fields = false;  // the result holds the last step's fields
   std::function<void(const fv::StepReport&, double reassembly_seconds, double step_seconds)>
       on_step;
@@ -205,6 +209,7 @@ struct RemusOversetResult {
   int status_changes = 0, uncovered_cells = 0;
   double seconds = 0, assembly_seconds = 0;
   std::vector<double> t, drag;  // hull force along -x (N per unit density, m^4/s^2)
+  double hull_y_plus_mean = 0, hull_y_plus_max = 0;  // SST: the hull's first cells at the end
   // With keep_fields: U's components and p per cell, phi per face, after the last step.
   std::array<std::vector<double>, 3> U;
   std::vector<double> p, phi;

@@ -12,10 +12,11 @@
 // otherwise. The transposed part vanishes on a wall at rest (U = 0 along it, and du_n/dn = 0 by
 // continuity) but not on a rotating one (Taylor-Couette: without it the torque is 5/8 of the
 // exact value for R2 = 2 R1). p_f is the boundary value.
-// On an overset mesh the wall faces whose cell is a hole are not in the flow (a fin's root inside
-// the hull) and are left out. Every other wall face counts once: in the systems auvloop builds
-// each wall surface belongs to one grid (the hull's to the hull grid, a fin's to its fin grid);
-// a surface covered by the walls of two grids (a collar grid) would be counted twice.
+// On an overset mesh the wall faces whose cell is a hole are not in the flow (a wall inside
+// another grid's body) and are left out. Every other wall face counts once: in the systems
+// auvloop builds each wall surface belongs to one grid and every wall face to an active cell (a
+// fin stands a gap off the hull, its root a wall of its own grid: test_fv_vehicle_overset); a
+// surface covered by the walls of two grids (a collar grid) would be counted twice.
 // Multiply by the density for newtons and newton-metres.
 #pragma once
 

@@ -100,6 +100,11 @@ class SstModel final : public fv::TurbulenceModel {
   void set_wall_distance(std::span<const double> wall_distance);
   // Free-stream k and omega fixed on a patch (an inlet).
   void inlet(const std::string& patch);
+  // A far field (Pimple::far_field's patches; OpenFOAM's inletOutlet): face by face, free-stream
+  // k and omega where the flux relative to the grid enters the domain (phi <= 0), zero gradient
+  // where it leaves, switched by the flux at every correct(), so that a box turning with the
+  // vehicle takes the free stream on the faces that face the flow.
+  void far_field(const std::string& patch);
   // Initial cell values for initialise() instead of the free stream (a restart from another
   // solution, grid sequencing); one per cell each, positive.
   void start_from(std::vector<double> k0, std::vector<double> omega0);
@@ -143,6 +148,7 @@ class SstModel final : public fv::TurbulenceModel {
     double nu_t = 0;    // the wall function's nu_t,w (m^2/s)
   };
   void wall_treatment(const fv::VectorField& U);
+  void switch_far_field(std::span<const double> phi);
   void update_nu_t();
   void strain(const fv::VectorField& U, const std::array<std::vector<Eigen::Vector3d>, 3>* given);
 
@@ -151,7 +157,8 @@ class SstModel final : public fv::TurbulenceModel {
 
   const fv::Mesh& mesh_;
   const fv::Overset* overset_ = nullptr;
-  std::vector<double> fixed_;  // the overset's fixed values of one equation (scratch)
+  std::vector<double> fixed_;   // the overset's fixed values of one equation (scratch)
+  std::vector<int> far_field_;  // patches
   SstSettings settings_;
   std::vector<double> d_;  // wall distance per cell
   std::vector<WallFace> walls_;
