@@ -38,7 +38,7 @@ namespace auvloop::engine::validation {
 
 namespace {
 constexpr double kPi = std::numbers::pi;
-constexpr double kU0 = 1.0, kA = 0.05, kP = 0.25, kNu = 0.01;          // m/s, m^2/s, m^2/s^2, m^2/s
+constexpr double kU0 = 1.0, kA = 0.05, kP = 0.25;                      // m/s, m^2/s, m^2/s^2
 constexpr double kK = 2 * kPi;                                         // 1/m
 constexpr double kRadius = 0.1, kOuter = 0.25, kCx = 0.45, kCy = 0.5;  // m
 
@@ -59,7 +59,7 @@ double exact_p(const Eigen::Vector3d& x) {
 }
 
 // 2.
-Eigen::Vector3d source(const Eigen::Vector3d& x) {
+Eigen::Vector3d source(const Eigen::Vector3d& x, double nu) {
   const auto g = g_of(x.x());
   const double C = std::cos(kK * x.y()), S = std::sin(kK * x.y());
   const double u = kU0 + kA * kK * g[0] * C, v = -kA * g[1] * S;
@@ -69,7 +69,7 @@ Eigen::Vector3d source(const Eigen::Vector3d& x) {
   const double vxx = -kA * g[3] * S, vyy = kA * kK * kK * g[1] * S;
   const double px = -kP * kPi * std::sin(kPi * x.x()) * std::sin(kPi * x.y());
   const double py = kP * kPi * std::cos(kPi * x.x()) * std::cos(kPi * x.y());
-  return {u * ux + v * uy + px - kNu * (uxx + uyy), u * vx + v * vy + py - kNu * (vxx + vyy), 0};
+  return {u * ux + v * uy + px - nu * (uxx + uyy), u * vx + v * vy + py - nu * (vxx + vyy), 0};
 }
 
 // 3.
@@ -116,7 +116,7 @@ void fix_exact(const fv::Mesh& mesh, fv::VectorField& U, const std::string& patc
 }
 }  // namespace
 
-MmsOversetError mms_overset(int m) {
+MmsOversetError mms_overset(int m, double nu) {
   const auto t0 = std::chrono::steady_clock::now();
   const auto pair = skewed_pair(m);
   auto system =
@@ -126,7 +126,7 @@ MmsOversetError mms_overset(int m) {
   const fv::Overset overset(mesh, std::move(system.stencils),
                             std::move(system.composite.cell_offset));
   fv::PimpleSettings s;  // 5.
-  s.nu = kNu;
+  s.nu = nu;
   s.bdf2 = false;  // pseudo-time marching to the steady state
   s.dt = 0.05;     // s: the steady state does not depend on it (measured: 0.01 to 0.2)
   s.pressure_correctors = 2;
@@ -144,7 +144,7 @@ MmsOversetError mms_overset(int m) {
         exact_p(mesh.face_centre(grid.patches[outlet].start + i));
   flow.body_force.resize(static_cast<std::size_t>(mesh.cells()));
   for (int c = 0; c < mesh.cells(); ++c) {
-    flow.body_force[static_cast<std::size_t>(c)] = source(mesh.centre(c));
+    flow.body_force[static_cast<std::size_t>(c)] = source(mesh.centre(c), nu);
     flow.U.c[0].cells[static_cast<std::size_t>(c)] = kU0;  // from the uniform stream
   }
   flow.U.update_boundary(mesh);

@@ -68,7 +68,7 @@ struct MmsOversetError {
   double continuity_error = 0, interface_flux = 0;
   double seconds = 0;
 };
-MmsOversetError mms_overset(int m);
+MmsOversetError mms_overset(int m, double nu = 0.01);  // nu in m^2/s
 
 // Lid-driven cavity on n x n uniform cells: the largest deviations from Ghia et al. of u on the
 // vertical and v on the horizontal centreline, in units of the lid speed.
