@@ -16,9 +16,15 @@
 //      stage (StepReport::seconds_pressure) with --balance bordered,response.
 //   bench_overset [--preset coarse] [--straight 5] [--steps 20] [--fin 0] [--dt 0.002]
 //                 [--coupling explicit,implicit] [--threads 1,2] [--outer 3]
-//                 [--balance bordered,response]
+//                 [--balance bordered,response] [--sst]
+//   --sst: SST k-omega on the coupling (remus-overset-sst's set-up, the fins' wall distances
+//   followed in the re-assembly, which is then counted in it), the step the CFD plant takes;
+//   --convection: of U (upwind, the case's default; linear-upwind; van-leer-skew). Each run ends
+//   with the hull's drag at its last step, pressure and shear apart; --drag-csv FILE writes
+//   t, drag, pressure drag of every step of the last run (m^4/s^2).
 #include <algorithm>
 #include <cstdio>
+#include <fstream>
 #include <map>
 #include <numbers>
 #include <sstream>
@@ -89,15 +95,28 @@ int main(int argc, char** argv) {
                  "response (one more solve per open component), off (none: the baseline "
                  "that prices the balance)")
       ->capture_default_str();
+  std::string convection = "upwind";
+  app.add_option("--convection", convection, "Convection of U")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"upwind", "linear-upwind", "linear-upwind-limited", "van-leer-skew"}));
+  std::string drag_csv;
+  app.add_option("--drag-csv", drag_csv, "Write t, drag, pressure drag per step of the last run");
+  app.add_flag("--sst", base.sst,
+               "SST k-omega (the wall distances of the turned fins are part of the re-assembly)");
   CLI11_PARSE(app, argc, argv);
+  base.convection = convection == "upwind"                  ? fv::Convection::upwind
+                    : convection == "linear-upwind"         ? fv::Convection::linear_upwind
+                    : convection == "linear-upwind-limited" ? fv::Convection::linear_upwind_limited
+                                                            : fv::Convection::van_leer_skew;
   base.straight = straight_steps * base.dt;
   base.turning = turning_steps * base.dt;
   base.fin_rate = 30 * std::numbers::pi / 180;
 
   std::printf(
-      "REMUS %s, fin %s turning at 30 deg/s, dt %g s, %d straight + %d turning steps, %d "
+      "REMUS %s, %s, U by %s, fin %s turning at 30 deg/s, dt %g s, %d straight + %d turning steps, "
+      "%d "
       "outer iterations\n",
-      base.preset.c_str(),
+      base.preset.c_str(), base.sst ? "SST k-omega" : "laminar", convection.c_str(),
       base.turning_fin < 0 ? "(every)" : std::to_string(base.turning_fin).c_str(), base.dt,
       straight_steps, turning_steps, base.outer_iterations);
   // Per coupling and thread count: the unbalanced run's median step less its overset part (the
@@ -144,6 +163,16 @@ int main(int argc, char** argv) {
         if (!result.failure.empty())
           std::printf("  %s, %d threads: failed after %d steps: %s\n", coupling.c_str(), n_threads,
                       result.steps, result.failure.c_str());
+        if (!result.drag.empty())
+          std::printf("  hull drag at t = %.4f s: %.5e m^4/s^2 (pressure %.5e, shear %.5e)\n",
+                      result.t.back(), result.drag.back(), result.drag_pressure.back(),
+                      result.drag.back() - result.drag_pressure.back());
+        if (!drag_csv.empty()) {
+          std::ofstream out(drag_csv);
+          out << "t,drag,drag_pressure\n";
+          for (std::size_t i = 0; i < result.t.size(); ++i)
+            out << result.t[i] << ',' << result.drag[i] << ',' << result.drag_pressure[i] << '\n';
+        }
         double total = 0, overset = 0;
         std::vector<double> rest;
         for (std::size_t k = 0; k < m.step.size(); ++k) {

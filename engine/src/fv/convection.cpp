@@ -51,6 +51,51 @@ void neighbourhood_range(const Mesh& mesh, const ScalarField& phi,
       });
 }
 
+// Barth and Jespersen's limiter (Convection::linear_upwind_limited): out_c = psi_c grad_c with
+// psi_c the largest value in [0, 1] for which phi_c + psi_c grad_c . (x_f - x_c) lies within
+// range_c at the centre of every face f of c (boundary faces included, empty ones not; a
+// periodic neighbour sees the face from its image, neighbour_centre). A minimum: exact in any
+// order, so the same bits for any number of threads.
+void limit_gradient(const Mesh& mesh, const ScalarField& phi, std::span<const Eigen::Vector3d> grad,
+                    std::span<const std::pair<double, double>> range,
+                    std::span<Eigen::Vector3d> out) {
+  Scratch<double> psi(out.size());
+  const auto limit = [&](std::size_t c, const Eigen::Vector3d& d) {
+    const double delta = grad[c].dot(d);
+    const double v = phi.cells[c];
+    double l = 1;
+    if (delta > 0) {
+      l = (range[c].second - v) / delta;
+    } else if (delta < 0) {
+      l = (range[c].first - v) / delta;
+    }
+    (*psi)[c] = std::min((*psi)[c], std::max(0.0, l));
+  };
+  const int internal = mesh.internal_faces();
+  scatter_faces(
+      mesh,
+      [&](int b, int e) {
+        for (auto c = static_cast<std::size_t>(b); c < static_cast<std::size_t>(e); ++c)
+          (*psi)[c] = 1;
+      },
+      [&](int f, bool own, bool nei) {
+        const auto P = static_cast<std::size_t>(mesh.owner(f));
+        if (f >= internal) {
+          if (own && !phi.is_empty(mesh, f - internal))
+            limit(P, mesh.face_centre(f) - mesh.centre(static_cast<int>(P)));
+          return;
+        }
+        if (own) limit(P, mesh.face_centre(f) - mesh.centre(static_cast<int>(P)));
+        if (nei)
+          limit(static_cast<std::size_t>(mesh.neighbour(f)),
+                mesh.face_centre(f) - mesh.neighbour_centre(f));
+      });
+  parallel_for(mesh.cells(), [&](int c) {
+    const auto s = static_cast<std::size_t>(c);
+    out[s] = (*psi)[s] * grad[s];
+  });
+}
+
 // Face value of phi on the face between upwind cell C and downwind cell D; rangeC is the range
 // of phi around C (van_leer_skew only).
 double high_order(const Mesh& mesh, Convection scheme, int f, double phiC, double phiD,
@@ -60,6 +105,7 @@ double high_order(const Mesh& mesh, Convection scheme, int f, double phiC, doubl
     case Convection::upwind:
       return phiC;
     case Convection::linear_upwind:
+    case Convection::linear_upwind_limited:  // gradC is the limited gradient
       return phiC + gradC.dot(mesh.face_centre(f) - xC);
     case Convection::van_leer:
       return van_leer(phiC, phiD, gradC, xC, xD);
@@ -90,9 +136,14 @@ void ConvectionTerm::add_to(Matrix& eq, double sign) const {
   if (scheme != Convection::upwind && g.size() != n)
     throw std::invalid_argument("div(phi): a supplied gradient needs one vector per cell");
   const auto& v = field.cells;
-  const bool ranged = scheme == Convection::van_leer_skew;
+  const bool limited = scheme == Convection::linear_upwind_limited;
+  const bool ranged = scheme == Convection::van_leer_skew || limited;
   Scratch<std::pair<double, double>> range(ranged ? n : 0);
   if (ranged) neighbourhood_range(mesh, field, *range);
+  Scratch<Eigen::Vector3d> limited_gradient(limited ? n : 0);
+  if (limited) limit_gradient(mesh, field, g, *range, *limited_gradient);
+  const std::span<const Eigen::Vector3d> gC =
+      limited ? std::span<const Eigen::Vector3d>(*limited_gradient) : g;
   const int internal = mesh.internal_faces();
   scatter_faces(
       mesh, [](int, int) {},
@@ -118,7 +169,7 @@ void ConvectionTerm::add_to(Matrix& eq, double sign) const {
           const Eigen::Vector3d& xP = mesh.centre(static_cast<int>(P));
           const Eigen::Vector3d xN = mesh.neighbour_centre(f);
           correction =
-              F * (high_order(mesh, scheme, f, v[C], v[D], g[C], fromP ? xP : xN, fromP ? xN : xP,
+              F * (high_order(mesh, scheme, f, v[C], v[D], gC[C], fromP ? xP : xN, fromP ? xN : xP,
                               ranged ? range[C] : std::pair<double, double>{}) -
                    v[C]);
         }

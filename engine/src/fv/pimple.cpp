@@ -300,7 +300,7 @@ StepReport Pimple::step() {
       for (double q : interface_flux(*overset_, mesh_, phi))
         r.interface_flux = std::max(r.interface_flux, std::abs(q));
     }
-    r.seconds_overset = overset_seconds_;
+    r.seconds_overset = overset_seconds_ + r.turbulence.seconds_overset;
     r.seconds_other = seconds_since(t0);
     r.seconds_gradient = mesh_.gradient_seconds() - gradient_seconds;
     check(r);

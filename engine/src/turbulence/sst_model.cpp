@@ -14,6 +14,7 @@
 #include "../fv/diagnosis.hpp"
 #include "../fv/parallel.hpp"
 #include "../fv/scratch.hpp"
+#include "../fv/stopwatch.hpp"
 
 namespace auvloop::engine::turbulence {
 
@@ -341,6 +342,7 @@ fv::TurbulenceReport SstModel::correct(const fv::TurbulenceInput& in) {
     // fixed row towards its last value.
     const double own = std::numeric_limits<double>::quiet_NaN();
     if (overset_ != nullptr) {
+      const fv::ScopedSeconds clock(report.seconds_overset);
       overset_->fixed_values(phi_field.cells, own, fixed_, fv::Overset::Bound::donors);
       eq_.fix_values(mesh_, overset_->fixed_cells(), fixed_);
     }
@@ -372,8 +374,10 @@ fv::TurbulenceReport SstModel::correct(const fv::TurbulenceInput& in) {
             }
         });
     report.bounded_cells += static_cast<long>(bounded[0]);
-    if (overset_ != nullptr)  // the donors' new values
+    if (overset_ != nullptr) {  // the donors' new values
+      const fv::ScopedSeconds clock(report.seconds_overset);
       overset_->apply(phi_field.cells, own, fv::Overset::Bound::donors);
+    }
     phi_field.update_boundary(mesh_);
   };
   rate_.resize(n);

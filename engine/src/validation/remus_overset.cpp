@@ -47,7 +47,7 @@ RemusOversetResult remus_overset(const RemusOversetRun& run) {
   s.nu = 1e-6;
   s.dt = run.dt;
   s.outer_iterations = run.outer_iterations;
-  s.convection = fv::Convection::upwind;  // van_leer_skew diverges at the hull's tail face
+  s.convection = run.convection;
   s.overset_coupling = run.coupling;
   s.mass_balance = run.mass_balance;
   s.max_courant = 500;  // the fin roots' tiny cells: a guard against divergence only
@@ -133,7 +133,9 @@ RemusOversetResult remus_overset(const RemusOversetRun& run) {
     }
     r.steps = n + 1;
     r.t.push_back(flow.time());
-    r.drag.push_back(-fv::patch_force(flow, fv::VehicleOverset::hull_wall()).total().x());
+    const auto hull = fv::patch_force(flow, fv::VehicleOverset::hull_wall());
+    r.drag.push_back(-hull.total().x());
+    r.drag_pressure.push_back(-hull.pressure.x());
   }
   if (sst)
     for (const auto& y : sst->y_plus())

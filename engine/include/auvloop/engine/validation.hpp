@@ -198,6 +198,11 @@ struct RemusOversetRun {
   // far field's inflow faces, zero gradient on its outflow faces) with the composite's wall
   // distances, kept current as the fins turn; otherwise laminar.
   bool sst = false;
+  // Convection of U (k and omega: the SST's own, van_leer_skew). Upwind by default: van Leer
+  // diverged in the first steps at the hull's tail (sessions 16 and 22); upwind's numerical
+  // viscosity makes the hull's pressure drag 7 times too large (docs/overset-flow.md, "Session
+  // 23").
+  fv::Convection convection = fv::Convection::upwind;
   bool keep_fields = false;  // the result holds the last step's fields
   std::function<void(const fv::StepReport&, double reassembly_seconds, double step_seconds)>
       on_step;
@@ -208,7 +213,8 @@ struct RemusOversetResult {
   double max_continuity = 0, max_interface_flux = 0, max_courant = 0;
   int status_changes = 0, uncovered_cells = 0;
   double seconds = 0, assembly_seconds = 0;
-  std::vector<double> t, drag;  // hull force along -x (N per unit density, m^4/s^2)
+  std::vector<double> t, drag;        // hull force along -x (N per unit density, m^4/s^2)
+  std::vector<double> drag_pressure;  // its pressure part (the rest is shear)
   double hull_y_plus_mean = 0, hull_y_plus_max = 0;  // SST: the hull's first cells at the end
   // With keep_fields: U's components and p per cell, phi per face, after the last step.
   std::array<std::vector<double>, 3> U;

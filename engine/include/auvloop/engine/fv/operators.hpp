@@ -66,7 +66,14 @@ inline LaplacianTerm laplacian(const Mesh& mesh, double gamma, const ScalarField
 enum class Convection {
   upwind,         // first order, bounded
   linear_upwind,  // phi_C + grad(phi)_C . (x_f - x_C): second order, unbounded
-  van_leer,       // TVD (Darwish-Moukalled r on unstructured grids): second order, bounded
+  // linear_upwind with the gradient limited per cell (Barth and Jespersen 1989; OpenFOAM's
+  // cellLimited, coefficient 1): grad_C scaled by the largest psi_C in [0, 1] that keeps the
+  // extrapolated value at every face centre of C within the range of phi over C and its face
+  // neighbours. Second order where the field is smooth and not at an extremum; a step convected
+  // implicitly stays within its bounds (test_fv_operators; unlimited: 4 % overshoot), though
+  // the limiter is not TVD in general.
+  linear_upwind_limited,
+  van_leer,  // TVD (Darwish-Moukalled r on unstructured grids): second order, bounded
   // van Leer's limited value (which sits at the mid-point between the two centres) moved to the
   // face centre with the upwind gradient, then clipped to the range of the two cell values:
   // identical to van_leer on uniform grids, second order also where the grid's skewness does

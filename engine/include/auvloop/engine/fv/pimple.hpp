@@ -114,7 +114,8 @@ struct StepReport {
   // Overset meshes: the overset parts of the above (the status carry-over after a re-assembly,
   // the fringe rows: fixed values or their elimination into the active rows, the fringe
   // interpolations and HbyA, the mass balance with its extra pressure solves, the interface
-  // flux). Not in it: the re-assembly itself (the driver's, before the step) and, with implicit
+  // flux; a turbulence model's own, TurbulenceReport::seconds_overset). Not in it: the
+  // re-assembly itself (the driver's, before the step) and, with implicit
   // coupling, the larger solve of the coupled system.
   double seconds_overset = 0;
   // The turbulence model's equations (none: zero), summed over the outer iterations, and their

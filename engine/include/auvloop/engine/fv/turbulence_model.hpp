@@ -60,6 +60,9 @@ struct TurbulenceReport {
   int k_iterations = 0, omega_iterations = 0;
   long bounded_cells = 0;  // cells whose k or omega fell below its floor and were raised to it
   long limited_cells = 0;  // cells where the production limiter acted
+  // Wall-clock time of the model's overset work (fixed fringe rows, interpolations: hook 8),
+  // also counted in StepReport::seconds_overset.
+  double seconds_overset = 0;
   void add(const TurbulenceReport& o) {
     k_residual = std::max(k_residual, o.k_residual);
     omega_residual = std::max(omega_residual, o.omega_residual);
@@ -67,6 +70,7 @@ struct TurbulenceReport {
     omega_iterations += o.omega_iterations;
     bounded_cells += o.bounded_cells;
     limited_cells += o.limited_cells;
+    seconds_overset += o.seconds_overset;
   }
 };
 
