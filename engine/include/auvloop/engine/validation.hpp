@@ -199,9 +199,9 @@ struct RemusOversetRun {
   // distances, kept current as the fins turn; otherwise laminar.
   bool sst = false;
   // Convection of U (k and omega: the SST's own, van_leer_skew). Upwind by default: van Leer
-  // diverged in the first steps at the hull's tail (sessions 16 and 22); upwind's numerical
-  // viscosity makes the hull's pressure drag 7 times too large (docs/overset-flow.md, "Session
-  // 23").
+  // diverged in the first steps (session 16 at the tail face, session 22 at the nose rim), and
+  // linear_upwind_limited with SST fails in the k equation's solve at 0.49 s; but upwind's
+  // numerical viscosity triples the hull's pressure drag (docs/overset-flow.md, "Session 23").
   fv::Convection convection = fv::Convection::upwind;
   bool keep_fields = false;  // the result holds the last step's fields
   std::function<void(const fv::StepReport&, double reassembly_seconds, double step_seconds)>
