@@ -21,7 +21,8 @@
 //   followed in the re-assembly, which is then counted in it), the step the CFD plant takes;
 //   --convection: of U (upwind, the case's default; linear-upwind; van-leer-skew). Each run ends
 //   with the hull's drag at its last step, pressure and shear apart; --drag-csv FILE writes
-//   t, drag, pressure drag of every step of the last run (m^4/s^2).
+//   t, drag, pressure drag of every step of the last run (m^4/s^2); --ambient and
+//   --turbulence-gs: the SST's ambient sources and k, omega solver (RemusOversetRun).
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
@@ -101,9 +102,16 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"upwind", "linear-upwind", "linear-upwind-limited", "van-leer-skew"}));
   std::string drag_csv;
   app.add_option("--drag-csv", drag_csv, "Write t, drag, pressure drag per step of the last run");
+  app.add_flag("--ambient", base.ambient_sources,
+               "SST: ambient sources that hold the free stream (Spalart-Rumsey)");
+  bool gs = false;
+  app.add_flag("--turbulence-gs", gs,
+               "SST: k and omega by BiCGSTAB preconditioned by Gauss-Seidel sweeps (default: "
+               "Jacobi)");
   app.add_flag("--sst", base.sst,
                "SST k-omega (the wall distances of the turned fins are part of the re-assembly)");
   CLI11_PARSE(app, argc, argv);
+  if (gs) base.turbulence_solver = fv::AsymmetricMethod::bicgstab_gs;
   base.convection = convection == "upwind"                  ? fv::Convection::upwind
                     : convection == "linear-upwind"         ? fv::Convection::linear_upwind
                     : convection == "linear-upwind-limited" ? fv::Convection::linear_upwind_limited

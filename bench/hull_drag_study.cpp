@@ -104,7 +104,8 @@ int main(int argc, char** argv) {
   app.add_option("--polymesh", polymesh,
                  "write the grid (patches hull, inflow, outflow) as an OpenFOAM case's polyMesh "
                  "and stop");
-  app.add_option("--vtk", vtk, "write the converged fields (U, p, k, omega, nu_t) into this directory");
+  app.add_option("--vtk", vtk,
+                 "write the converged fields (U, p, k, omega, nu_t) into this directory");
   app.add_option("--threads", threads, "threads (default: all the machine's)")
       ->check(CLI::Range(1, 1024));
   CLI11_PARSE(app, argc, argv);

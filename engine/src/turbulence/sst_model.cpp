@@ -382,6 +382,10 @@ fv::TurbulenceReport SstModel::correct(const fv::TurbulenceInput& in) {
   };
   rate_.resize(n);
   source_.resize(n);
+  const bool ambient = settings_.ambient_sources;
+  const double ambient_w2 = ambient ? settings_.freestream.omega * settings_.freestream.omega : 0;
+  const double ambient_k =
+      ambient ? c.beta_star * settings_.freestream.omega * settings_.freestream.k : 0;
   // 3. omega.
   // The blended sigmas per cell once (blend() evaluates gamma1, gamma2 with their square roots;
   // the face loop would do it twice per face and equation).
@@ -399,7 +403,7 @@ fv::TurbulenceReport SstModel::correct(const fv::TurbulenceInput& in) {
     const double w = omega.cells[s];
     const double cd = (1 - F1_[s]) * 2 * c.sigma_w2 * cross[s] / w;  // 1/s^2
     rate_[s] = b.beta * w + (cd < 0 ? -cd / w : 0.0);
-    source_[s] = b.gamma * S2_[s] + (cd > 0 ? cd : 0.0);
+    source_[s] = b.gamma * S2_[s] + (cd > 0 ? cd : 0.0) + b.beta * ambient_w2;
   });
   assemble(omega, omega_old_, *gw);
   if (settings_.wall == WallTreatment::wall_function)
@@ -420,6 +424,7 @@ fv::TurbulenceReport SstModel::correct(const fv::TurbulenceInput& in) {
               production(c, nu_t.cells[s], std::sqrt(S2_[s]), k.cells[s], omega.cells[s], &capped);
           count[0] += capped ? 1 : 0;
           rate_[s] = c.beta_star * omega.cells[s];
+          source_[s] += ambient_k;
         }
       });
   if (settings_.wall != WallTreatment::resolved)

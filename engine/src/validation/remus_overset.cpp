@@ -68,6 +68,8 @@ RemusOversetResult remus_overset(const RemusOversetRun& run) {
     turbulence::SstSettings ts;
     ts.nu = s.nu;
     ts.freestream = turbulence::freestream_from_intensity(run.speed, 0.01, 10, s.nu);
+    ts.ambient_sources = run.ambient_sources;
+    ts.solver = run.turbulence_solver;
     sst = std::make_unique<turbulence::SstModel>(mesh, walls->composite(), ts);
     for (const auto& patch : mesh.grid().patches)
       if (patch.name.rfind("background/", 0) == 0 && patch.type != mesher::PatchType::overset)

@@ -203,6 +203,10 @@ struct RemusOversetRun {
   // linear_upwind_limited with SST fails in the k equation's solve at 0.49 s; but upwind's
   // numerical viscosity triples the hull's pressure drag (docs/overset-flow.md, "Session 23").
   fv::Convection convection = fv::Convection::upwind;
+  // SST only: the ambient sources that hold the free stream (SstSettings::ambient_sources), and
+  // the k and omega equations' solver.
+  bool ambient_sources = false;
+  fv::AsymmetricMethod turbulence_solver = fv::AsymmetricMethod::bicgstab_jacobi;
   bool keep_fields = false;  // the result holds the last step's fields
   std::function<void(const fv::StepReport&, double reassembly_seconds, double step_seconds)>
       on_step;

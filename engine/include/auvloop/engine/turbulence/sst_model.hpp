@@ -24,7 +24,9 @@
 //      term explicit where it is positive and implicit where it is negative), under-relaxed in
 //      all but the final outer iteration (every iteration when steady), solved, bounded below;
 //   4. the k equation likewise (its wall-cell production from step 2); k at walls zero
-//      gradient (the wall treatment supplies its production for any y+);
+//      gradient (the wall treatment supplies its production for any y+); with
+//      SstSettings::ambient_sources, beta omega_amb^2 and beta* omega_amb k_amb added to the
+//      omega and k sources (wall cells' k production excepted: the wall treatment's);
 //   5. nu_t per cell with F2 from the new k, omega; per internal face by linear interpolation;
 //      per wall face the wall function's nu_t,w = max(0, u_tau^2 y / U_t - nu), so the
 //      momentum equation's wall flux (nu + nu_t,w) U_t / y is the law-of-the-wall shear
@@ -76,6 +78,11 @@ struct SstSettings {
                             // outer iteration)
   double floor = 1e-15;     // k_min and omega_min as this fraction of the free-stream values
   WallTreatment wall = WallTreatment::any_y_plus;
+  // Ambient sources (Spalart and Rumsey 2007, NASA TMR's "SST-sust"; OpenFOAM's decayControl):
+  // + beta* omega_amb k_amb in the k equation and + beta omega_amb^2 in the omega equation, with
+  // the free stream as the ambient values, so that the free stream holds its level instead of
+  // decaying (a body towed through water at rest, where nothing renews it). Off by default.
+  bool ambient_sources = false;
 };
 
 // The achieved y+ of the first cells on one wall patch (the solver's report, item 4).
