@@ -122,8 +122,7 @@ int main(int argc, char** argv) {
 
   std::printf(
       "REMUS %s, %s, U by %s, fin %s turning at 30 deg/s, dt %g s, %d straight + %d turning steps, "
-      "%d "
-      "outer iterations\n",
+      "%d outer iterations\n",
       base.preset.c_str(), base.sst ? "SST k-omega" : "laminar", convection.c_str(),
       base.turning_fin < 0 ? "(every)" : std::to_string(base.turning_fin).c_str(), base.dt,
       straight_steps, turning_steps, base.outer_iterations);

@@ -198,10 +198,11 @@ struct RemusOversetRun {
   // far field's inflow faces, zero gradient on its outflow faces) with the composite's wall
   // distances, kept current as the fins turn; otherwise laminar.
   bool sst = false;
-  // Convection of U (k and omega: the SST's own, van_leer_skew). Upwind by default: van Leer
-  // diverged in the first steps (session 16 at the tail face, session 22 at the nose rim), and
-  // linear_upwind_limited with SST fails in the k equation's solve at 0.49 s; but upwind's
-  // numerical viscosity triples the hull's pressure drag (docs/overset-flow.md, "Session 23").
+  // Convection of U (k and omega: the SST's own, van_leer_skew). Upwind by default (the laminar
+  // case's): van Leer diverged in the first steps (session 16 at the tail face, session 22 at
+  // the nose rim), but upwind's numerical viscosity triples the hull's pressure drag;
+  // remus-overset-sst runs linear_upwind_limited with the ambient sources (docs/overset-flow.md,
+  // "Session 23").
   fv::Convection convection = fv::Convection::upwind;
   // SST only: the ambient sources that hold the free stream (SstSettings::ambient_sources), and
   // the k and omega equations' solver.
