@@ -11,6 +11,10 @@
 #include <utility>
 
 #include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
 #include <Eigen/SparseLU>
@@ -120,16 +124,51 @@ struct OversetAssembler::Impl {
   std::vector<char> moved;
   std::unique_ptr<geometry::MyringProfile> profile;
   double cb_station = 0;
-  // Scratch for stencil searches: per grid, the stamp of the search that last reached a cell.
-  mutable std::vector<std::vector<int>> marks;
-  mutable std::vector<int> stamps;
-  // Per grid, the cell found by its last successful locate: receivers are visited in cell order,
-  // so consecutive ones are mostly neighbours and a walk from there takes a step or two instead
-  // of a k-d tree search (the walk still ends only in the cell containing the point).
-  mutable std::vector<int> found;
-  [[nodiscard]] int last_found(int h) const { return found[static_cast<std::size_t>(h)]; }
+  // Scratch of the searches, one per thread: per grid, the stamp of the search that last
+  // reached a cell (stencil_in), and the cell found by the last successful locate, the seed of
+  // the next walk (receivers are visited in cell order, so consecutive ones are mostly
+  // neighbours and a walk from there takes a step or two instead of a k-d tree search).
+  struct Scratch {
+    std::vector<std::vector<int>> marks;
+    std::vector<int> stamps, found;
+  };
+  mutable tbb::enumerable_thread_specific<Scratch> scratch;
+  [[nodiscard]] Scratch& local() const {
+    Scratch& s = scratch.local();
+    if (s.marks.size() != grids.size()) {
+      s.marks.clear();
+      for (const auto& d : grids) s.marks.emplace_back(static_cast<std::size_t>(d.grid->cells), 0);
+      s.stamps.assign(grids.size(), 0);
+      s.found.assign(grids.size(), -1);
+    }
+    return s;
+  }
+  [[nodiscard]] int last_found(int h) const { return local().found[static_cast<std::size_t>(h)]; }
   void remember(int h, int loc) const {
-    if (loc >= 0) found[static_cast<std::size_t>(h)] = loc;
+    if (loc >= 0) local().found[static_cast<std::size_t>(h)] = loc;
+  }
+  // A walk ends in the cell containing its point, but a point on a face between two cells may end
+  // in either, depending on the seed: the seeds are forgotten at the start of every block of
+  // cells (for_blocks) and every serial stage, so that where a walk ends depends on the cells
+  // alone, never on the thread that ran them or on what it ran before.
+  void forget_seeds() const {
+    auto& found = local().found;
+    std::fill(found.begin(), found.end(), -1);
+  }
+  // fn(i) for i in [0, n) on TBB's pool, in blocks of kBlock indices fixed by n alone (the
+  // simple partitioner halves a range until it is at most a block), each block in index order
+  // on one thread with the seeds forgotten first. A stage whose fn(i) writes only what belongs to
+  // index i thus gives the same result for any number of threads.
+  static constexpr int kBlock = 64;
+  template <class F>
+  void for_blocks(std::size_t n, F&& fn) const {
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, n, kBlock),
+        [&](const tbb::blocked_range<std::size_t>& r) {
+          forget_seeds();
+          for (std::size_t i = r.begin(); i != r.end(); ++i) fn(i);
+        },
+        tbb::simple_partitioner());
   }
 
   // Steps 1-3 for the given cells of every grid (all others keep their statuses).
@@ -260,9 +299,10 @@ struct OversetAssembler::Impl {
       others.push_back(h);
       boxes.push_back(body_box(h));
     }
-    for (int c : cells) {
+    for_blocks(cells.size(), [&](std::size_t i) {  // each cell's status its own
+      const int c = cells[i];
       const auto cu = static_cast<std::size_t>(c);
-      if (st[cu] != CellStatus::active) continue;
+      if (st[cu] != CellStatus::active) return;
       const Eigen::Vector3d x = body(g, c);
       const double band = cover_band(settings, d.size[cu]);
       for (std::size_t k = 0; k < others.size(); ++k) {
@@ -280,7 +320,7 @@ struct OversetAssembler::Impl {
           break;
         }
       }
-    }
+    });
   }
 
   // Step 3: fringe = the non-hole cells at most `fringe_layers` face steps from a hole, counting
@@ -378,8 +418,9 @@ struct OversetAssembler::Impl {
                   std::vector<double>& w, const std::vector<char>* relay = nullptr) const {
     const auto& hd = grids[static_cast<std::size_t>(h)];
     // Cells reached are stamped (mark[cell] == stamp) instead of searched for in a list.
-    auto& mark = marks[static_cast<std::size_t>(h)];
-    const int stamp = ++stamps[static_cast<std::size_t>(h)];
+    Scratch& scratch_ = local();
+    auto& mark = scratch_.marks[static_cast<std::size_t>(h)];
+    const int stamp = ++scratch_.stamps[static_cast<std::size_t>(h)];
     std::vector<int> reached{loc};
     mark[static_cast<std::size_t>(loc)] = stamp;
     // The weights are non-negative (convex_weights: no value beyond its donors', so that no
@@ -571,83 +612,128 @@ struct OversetAssembler::Impl {
       ga.stencil_grids.clear();
       ga.stencil_cells.clear();
       ga.stencil_weights.clear();
-      std::vector<int> cells;
-      std::vector<double> w;
-      const auto append = [&](int dg) {
-        ga.stencil_grids.insert(ga.stencil_grids.end(), cells.size(), dg);
-        ga.stencil_cells.insert(ga.stencil_cells.end(), cells.begin(), cells.end());
-        ga.stencil_weights.insert(ga.stencil_weights.end(), w.begin(), w.end());
+      // Each fringe cell's donors in parallel (keep, refit or search: each reads the statuses
+      // and the previous assembly only), then the stencil arrays in cell order.
+      std::vector<int> fringe;
+      for (std::size_t c = 0; c < n; ++c)
+        if (ga.status[c] == CellStatus::fringe) fringe.push_back(static_cast<int>(c));
+      std::vector<Donors> found(fringe.size());
+      for_blocks(fringe.size(), [&](std::size_t i) {
+        const auto c = static_cast<std::size_t>(fringe[i]);
+        Donors& d = found[i];
+        if (previous && keep(a, *previous, *redo, g, c)) {
+          d.kind = Donors::kept;
+          return;
+        }
+        if (previous != nullptr &&
+            refit(a, previous->grids[g], static_cast<int>(g), static_cast<int>(c), d.cells, d.w)) {
+          d.kind = Donors::refitted;
+          return;
+        }
+        int seed_grid = -1, seed_cell = -1;
+        if (previous != nullptr) {
+          seed_grid = previous->grids[g].donor_grid[c];
+          seed_cell = previous->grids[g].donor_cell[c];
+        }
+        bool fb = false;
+        d.kind = find_donor(static_cast<int>(g), static_cast<int>(c), seed_grid, seed_cell, a,
+                            d.cells, d.w, d.grid, d.cell, fb, false)
+                     ? Donors::searched
+                     : Donors::pending;
+      });
+      const auto append = [&](int dg, const Donors& d) {
+        ga.stencil_grids.insert(ga.stencil_grids.end(), d.cells.size(), dg);
+        ga.stencil_cells.insert(ga.stencil_cells.end(), d.cells.begin(), d.cells.end());
+        ga.stencil_weights.insert(ga.stencil_weights.end(), d.w.begin(), d.w.end());
       };
+      std::size_t next = 0;
       for (std::size_t c = 0; c < n; ++c) {
-        if (ga.status[c] == CellStatus::fringe && !(previous && keep(a, *previous, *redo, g, c))) {
-          int seed_grid = -1, seed_cell = -1;
-          if (previous != nullptr) {
-            seed_grid = previous->grids[g].donor_grid[c];
-            seed_cell = previous->grids[g].donor_cell[c];
+        if (ga.status[c] == CellStatus::fringe) {
+          const Donors& d = found[next++];
+          switch (d.kind) {
+            case Donors::refitted:
+              ga.donor_grid[c] = previous->grids[g].donor_grid[c];
+              ga.donor_cell[c] = previous->grids[g].donor_cell[c];
+              ga.fallback[c] = previous->grids[g].fallback[c];
+              append(ga.donor_grid[c], d);
+              break;
+            case Donors::searched:
+              ga.donor_grid[c] = d.grid;
+              ga.donor_cell[c] = d.cell;
+              append(d.grid, d);
+              break;
+            case Donors::pending:
+              ga.fallback[c] = 1;  // its stencil (empty for now) after chain()
+              pending[g].push_back(static_cast<int>(c));
+              break;
+            case Donors::kept: {  // copy the previous stencil
+              const auto& pg = previous->grids[g];
+              ga.donor_grid[c] = pg.donor_grid[c];
+              ga.donor_cell[c] = pg.donor_cell[c];
+              ga.fallback[c] = pg.fallback[c];
+              const auto b = static_cast<std::size_t>(pg.stencil_offsets[c]);
+              const auto e = static_cast<std::size_t>(pg.stencil_offsets[c + 1]);
+              const auto range = [&](const auto& v) {
+                return std::pair(v.begin() + static_cast<std::ptrdiff_t>(b),
+                                 v.begin() + static_cast<std::ptrdiff_t>(e));
+              };
+              const auto [g0, g1] = range(pg.stencil_grids);
+              const auto [c0, c1] = range(pg.stencil_cells);
+              const auto [w0, w1] = range(pg.stencil_weights);
+              ga.stencil_grids.insert(ga.stencil_grids.end(), g0, g1);
+              ga.stencil_cells.insert(ga.stencil_cells.end(), c0, c1);
+              ga.stencil_weights.insert(ga.stencil_weights.end(), w0, w1);
+              break;
+            }
           }
-          int dg = -1, dc = -1;
-          bool fb = false;
-          if (previous != nullptr &&
-              refit(a, previous->grids[g], static_cast<int>(g), static_cast<int>(c), cells, w)) {
-            ga.donor_grid[c] = previous->grids[g].donor_grid[c];
-            ga.donor_cell[c] = previous->grids[g].donor_cell[c];
-            ga.fallback[c] = previous->grids[g].fallback[c];
-            append(ga.donor_grid[c]);
-          } else if (find_donor(static_cast<int>(g), static_cast<int>(c), seed_grid, seed_cell, a,
-                                cells, w, dg, dc, fb, false)) {
-            ga.donor_grid[c] = dg;
-            ga.donor_cell[c] = dc;
-            append(dg);
-          } else {
-            ga.fallback[c] = 1;  // its stencil (empty for now) after chain()
-            pending[g].push_back(static_cast<int>(c));
-          }
-        } else if (ga.status[c] == CellStatus::fringe) {  // copy the previous stencil
-          const auto& pg = previous->grids[g];
-          ga.donor_grid[c] = pg.donor_grid[c];
-          ga.donor_cell[c] = pg.donor_cell[c];
-          ga.fallback[c] = pg.fallback[c];
-          const auto b = static_cast<std::size_t>(pg.stencil_offsets[c]);
-          const auto e = static_cast<std::size_t>(pg.stencil_offsets[c + 1]);
-          const auto range = [&](const auto& v) {
-            return std::pair(v.begin() + static_cast<std::ptrdiff_t>(b),
-                             v.begin() + static_cast<std::ptrdiff_t>(e));
-          };
-          const auto [g0, g1] = range(pg.stencil_grids);
-          const auto [c0, c1] = range(pg.stencil_cells);
-          const auto [w0, w1] = range(pg.stencil_weights);
-          ga.stencil_grids.insert(ga.stencil_grids.end(), g0, g1);
-          ga.stencil_cells.insert(ga.stencil_cells.end(), c0, c1);
-          ga.stencil_weights.insert(ga.stencil_weights.end(), w0, w1);
         }
         ga.stencil_offsets.push_back(static_cast<int>(ga.stencil_cells.size()));
       }
     }
     chain(a);
-    // The fallback stencils of the receivers left unchained; orphans where there is none.
+    // The fallback stencils of the receivers left unchained (in parallel, as above); orphans
+    // where there is none.
     for (std::size_t g = 0; g < grids.size(); ++g) {
       auto& ga = a.grids[g];
-      std::map<int, std::vector<Entry>> fallbacks;
-      for (int c : pending[g]) {
-        const auto cu = static_cast<std::size_t>(c);
-        if (ga.chained[cu]) continue;
-        std::vector<int> cells;
-        std::vector<double> w;
-        int dg = -1, dc = -1;
+      std::vector<int> unchained;
+      for (int c : pending[g])
+        if (!ga.chained[static_cast<std::size_t>(c)]) unchained.push_back(c);
+      std::vector<Donors> found(unchained.size());
+      for_blocks(unchained.size(), [&](std::size_t i) {
+        Donors& d = found[i];
         bool fb = false;
-        if (!find_donor(static_cast<int>(g), c, -1, -1, a, cells, w, dg, dc, fb, true)) {
+        d.kind = find_donor(static_cast<int>(g), unchained[i], -1, -1, a, d.cells, d.w, d.grid,
+                            d.cell, fb, true)
+                     ? Donors::searched
+                     : Donors::pending;
+      });
+      std::map<int, std::vector<Entry>> fallbacks;
+      for (std::size_t i = 0; i < unchained.size(); ++i) {
+        const auto cu = static_cast<std::size_t>(unchained[i]);
+        const Donors& d = found[i];
+        if (d.kind == Donors::pending) {
           ga.status[cu] = CellStatus::orphan;
           ga.fallback[cu] = 0;
           continue;
         }
-        ga.donor_grid[cu] = dg;
-        ga.donor_cell[cu] = dc;
-        auto& entries = fallbacks[c];
-        for (std::size_t i = 0; i < cells.size(); ++i) entries.push_back({dg, cells[i], w[i]});
+        ga.donor_grid[cu] = d.grid;
+        ga.donor_cell[cu] = d.cell;
+        auto& entries = fallbacks[unchained[i]];
+        for (std::size_t k = 0; k < d.cells.size(); ++k)
+          entries.push_back({d.grid, d.cells[k], d.w[k]});
       }
       if (!fallbacks.empty()) replace_stencils(ga, fallbacks, false);
     }
   }
+
+  // What connect() found for one fringe cell: its previous stencil kept, refitted (new weights,
+  // the previous donor), a new one searched (grid, cell, stencil), or none yet (pending).
+  struct Donors {
+    enum Kind : char { kept, refitted, searched, pending } kind = pending;
+    int grid = -1, cell = -1;
+    std::vector<int> cells;
+    std::vector<double> w;
+  };
 
   // One donor of a chained stencil: grid, cell, weight.
   struct Entry {
@@ -685,6 +771,7 @@ struct OversetAssembler::Impl {
   // they interpolate (no stencil extrapolates). A receiver without such a stencil, or a singular
   // system, keeps its fallback.
   void solve_knots(Assembly& a) const {
+    forget_seeds();  // a serial stage
     std::vector<std::pair<int, int>> knots;
     std::vector<std::vector<int>> index(grids.size());
     std::vector<std::vector<char>> usable(grids.size());
@@ -808,6 +895,7 @@ struct OversetAssembler::Impl {
 
   // One pass of chain(): true if it chained any receiver.
   bool chain_once(Assembly& a) const {
+    forget_seeds();  // a serial stage
     std::vector<std::vector<char>> relay(grids.size());
     for (std::size_t h = 0; h < grids.size(); ++h) {
       const auto& ha = a.grids[h];
@@ -996,9 +1084,6 @@ void OversetAssembler::Impl::init(const std::vector<OversetComponent>& component
     wall_dist.push_back(std::move(w));
     wall_hole.emplace_back(n, 0);
     depth.emplace_back(n, kInf);
-    marks.emplace_back(n, 0);
-    stamps.push_back(0);
-    found.push_back(-1);
   }
 }
 
@@ -1168,11 +1253,12 @@ Assembly OversetAssembler::update(const Assembly& previous,
   std::vector<std::vector<char>> redo(m.grids.size());
   for (std::size_t g = 0; g < m.grids.size(); ++g) {
     const auto& d = m.grids[g];
-    redo[g].assign(static_cast<std::size_t>(d.grid->cells), 0);
+    const auto n = static_cast<std::size_t>(d.grid->cells);
+    redo[g].assign(n, 0);
+    std::vector<char> near_cell(n, 0);
     const auto& slack = m.slack[g];
-    for (int c = 0; c < d.grid->cells; ++c) {
-      const auto cu = static_cast<std::size_t>(c);
-      const Eigen::Vector3d x = m.body(static_cast<int>(g), c);
+    m.for_blocks(n, [&](std::size_t cu) {  // each cell's marks its own
+      const Eigen::Vector3d x = m.body(static_cast<int>(g), static_cast<int>(cu));
       const bool coverable =
           d.priority > 0 || m.settings.overlap_cells * d.size[cu] < 2 * fin_depth;
       const double reach = (coverable ? reach_cells : m.settings.fringe_layers + 2) * d.size[cu];
@@ -1189,10 +1275,12 @@ Assembly OversetAssembler::update(const Assembly& previous,
         near = m.hull_gap(x) < reach + hull_cover_reach;
       }
       if (near) {
-        cells[g].push_back(c);
+        near_cell[cu] = 1;
         redo[g][cu] = 1;
       }
-    }
+    });
+    for (std::size_t c = 0; c < n; ++c)
+      if (near_cell[c]) cells[g].push_back(static_cast<int>(c));
     a.cells_visited += static_cast<int>(cells[g].size());
   }
   m.run(a, cells, false);

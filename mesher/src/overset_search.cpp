@@ -72,6 +72,7 @@ GridData prepare(const Grid& g, int priority, int fin, int solid, bool planar) {
   d.tree = std::make_unique<KTree>(
       boost::make_zip_iterator(boost::make_tuple(d.centres.begin(), d.ids.begin())),
       boost::make_zip_iterator(boost::make_tuple(d.centres.end(), d.ids.end())));
+  d.tree->build();  // now, not lazily at the first search: searches run on several threads
   return d;
 }
 
