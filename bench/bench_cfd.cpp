@@ -84,14 +84,6 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
-fv::Convection convection(const std::string& s) {
-  if (s == "upwind") return fv::Convection::upwind;
-  if (s == "linear-upwind") return fv::Convection::linear_upwind;
-  if (s == "van-leer") return fv::Convection::van_leer;
-  std::fprintf(stderr, "unknown convection scheme %s\n", s.c_str());
-  std::exit(2);
-}
-
 mesher::Grid cavity_grid(const Options& o) {
   const auto nodes = mesher::graded_nodes(0, 1, o.n);
   mesher::BoxPatches patches;
@@ -201,7 +193,12 @@ int main(int argc, char** argv) {
   s.outer_iterations = o.outer;
   s.pressure_correctors = o.correctors;
   s.bdf2 = o.time == "bdf2";
-  s.convection = convection(o.convection);
+  try {
+    s.convection = fv::convection_from_string(o.convection);
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "%s\n", e.what());
+    return 2;
+  }
   if (!o.pressure.empty()) s.pressure_solver = fv::symmetric_method_from_string(o.pressure);
   if (!o.momentum.empty()) s.momentum_solver = fv::asymmetric_method_from_string(o.momentum);
   s.tolerance = o.tolerance;

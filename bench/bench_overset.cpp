@@ -57,7 +57,7 @@ double median(std::vector<double> v) {
 }
 
 struct Turning {  // the turning steps' figures of one run
-  std::vector<double> share, step, reassembly, overset, residual;
+  std::vector<double> share, step, reassembly, walls, overset, residual;
   std::vector<double> pressure_iterations, pressure_seconds;
   double continuity = 0, interface_flux = 0;
 };
@@ -112,10 +112,7 @@ int main(int argc, char** argv) {
                "SST k-omega (the wall distances of the turned fins are part of the re-assembly)");
   CLI11_PARSE(app, argc, argv);
   if (gs) base.turbulence_solver = fv::AsymmetricMethod::bicgstab_gs;
-  base.convection = convection == "upwind"                  ? fv::Convection::upwind
-                    : convection == "linear-upwind"         ? fv::Convection::linear_upwind
-                    : convection == "linear-upwind-limited" ? fv::Convection::linear_upwind_limited
-                                                            : fv::Convection::van_leer_skew;
+  base.convection = fv::convection_from_string(convection);
   base.straight = straight_steps * base.dt;
   base.turning = turning_steps * base.dt;
   base.fin_rate = 30 * std::numbers::pi / 180;
@@ -154,11 +151,13 @@ int main(int argc, char** argv) {
         }
         Turning m;
         int step = 0;
-        run.on_step = [&](const fv::StepReport& r, double reassembly, double seconds) {
+        run.on_step = [&](const fv::StepReport& r, double reassembly, double walls,
+                          double seconds) {
           if (++step <= straight_steps) return;
           m.share.push_back((reassembly + r.seconds_overset) / (reassembly + seconds));
           m.step.push_back(reassembly + seconds);
           m.reassembly.push_back(reassembly);
+          m.walls.push_back(walls);
           m.overset.push_back(r.seconds_overset);
           m.residual.push_back(r.outer_residual);
           m.pressure_iterations.push_back(r.pressure_iterations);
@@ -190,13 +189,14 @@ int main(int argc, char** argv) {
         const std::string key = coupling + "/" + t;
         if (run.mass_balance == fv::MassBalance::off) plain[key] = median(rest);
         std::printf(
-            "  %-8s %-8s %d thread(s): s/step median %.3f (re-assembly %.3f, in-step overset "
-            "%.3f, pressure stage %.3f); overset share median %.1f %%, over the %zu steps %.1f %%; "
-            "last outer momentum residual median %.2e, pressure iterations median %.0f; "
-            "continuity <= %.1e, interface flux <= %.1e m^3/s\n",
+            "  %-8s %-8s %d thread(s): s/step median %.3f (re-assembly %.3f of which wall "
+            "distances %.3f, in-step overset %.3f, pressure stage %.3f); overset share median "
+            "%.1f %%, over the %zu steps %.1f %%; last outer momentum residual median %.2e, "
+            "pressure iterations median %.0f; continuity <= %.1e, interface flux <= %.1e "
+            "m^3/s\n",
             coupling.c_str(), balance.c_str(), n_threads, median(m.step), median(m.reassembly),
-            median(m.overset), median(m.pressure_seconds), 100 * median(m.share), m.step.size(),
-            total > 0 ? 100 * overset / total : 0.0, median(m.residual),
+            median(m.walls), median(m.overset), median(m.pressure_seconds), 100 * median(m.share),
+            m.step.size(), total > 0 ? 100 * overset / total : 0.0, median(m.residual),
             median(m.pressure_iterations), m.continuity, m.interface_flux);
         // Against the unbalanced baseline: everything this form's step costs beyond the step
         // without overset work (re-assembly, interpolation, and the balance wherever it runs,

@@ -52,12 +52,6 @@ int main(int argc, char** argv) {
   app.add_option("--speed", speed, "the vehicle's speed (m/s)")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
-  const std::map<std::string, fv::Convection> schemes{
-      {"upwind", fv::Convection::upwind},
-      {"linear-upwind", fv::Convection::linear_upwind},
-      {"linear-upwind-limited", fv::Convection::linear_upwind_limited},
-      {"van-leer", fv::Convection::van_leer},
-      {"van-leer-skew", fv::Convection::van_leer_skew}};
   app.add_option("--convection", convection, "convection of U")
       ->capture_default_str()
       ->check(CLI::IsMember(
@@ -135,13 +129,13 @@ int main(int argc, char** argv) {
   s.tolerance = 1e-8;
   s.momentum_tolerance = 1e-6;
   s.max_courant = 1e30;
-  s.convection = schemes.at(convection);
+  s.convection = fv::convection_from_string(convection);
   fv::Pimple flow(mesh, s);
   turbulence::SstSettings ts;
   ts.nu = nu;
   ts.freestream = turbulence::freestream_from_intensity(speed, intensity, viscosity_ratio, nu);
   ts.relax = relax_turbulence;
-  ts.convection = schemes.at(turbulence_convection);
+  ts.convection = fv::convection_from_string(turbulence_convection);
   ts.wall = walls.at(wall);
   ts.tolerance = 1e-6;
   const auto d = distances.of(0);

@@ -11,7 +11,6 @@
 //                        as an OpenFOAM polyMesh: bench/openfoam_cylinder.sh; nothing is run)
 #include <cstdio>
 #include <fstream>
-#include <map>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -85,10 +84,6 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (which == "2d1") return run_2d1(c.grid, c.dt);
-  const std::map<std::string, fv::Convection> schemes{
-      {"van-leer-skew", fv::Convection::van_leer_skew},
-      {"van-leer", fv::Convection::van_leer},
-      {"linear-upwind", fv::Convection::linear_upwind}};
-  c.convection = schemes.at(convection);
+  c.convection = fv::convection_from_string(convection);
   return run_2d2(c, convection, csv);
 }

@@ -2,6 +2,8 @@
 // Exactness and boundedness of the finite-volume operators on distorted grids.
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -47,6 +49,20 @@ TEST(FvOperators, LaplacianOfALinearFieldVanishesOnNonOrthogonalCells) {
   double k_max = 0;
   for (int f = 0; f < mesh.faces(); ++f) k_max = std::max(k_max, mesh.k(f).norm());
   EXPECT_GT(k_max, 1e-3);  // the grid is really non-orthogonal
+}
+
+TEST(FvOperators, ConvectionSchemesReadBackFromTheirNames) {
+  for (auto c : {fv::Convection::upwind, fv::Convection::linear_upwind,
+                 fv::Convection::linear_upwind_limited, fv::Convection::van_leer,
+                 fv::Convection::van_leer_skew})
+    EXPECT_EQ(fv::convection_from_string(fv::to_string(c)), c);
+  try {
+    (void)fv::convection_from_string("central");
+    FAIL() << "an unknown scheme was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("'central'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("van-leer-skew"), std::string::npos) << e.what();
+  }
 }
 
 TEST(FvOperators, VanLeerConvectionOfAStepStaysBounded) {

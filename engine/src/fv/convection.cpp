@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -13,6 +14,31 @@
 #include "scratch.hpp"
 
 namespace auvloop::engine::fv {
+
+const char* to_string(Convection c) {
+  switch (c) {
+    case Convection::upwind:
+      return "upwind";
+    case Convection::linear_upwind:
+      return "linear-upwind";
+    case Convection::linear_upwind_limited:
+      return "linear-upwind-limited";
+    case Convection::van_leer:
+      return "van-leer";
+    case Convection::van_leer_skew:
+      return "van-leer-skew";
+  }
+  return "?";
+}
+
+Convection convection_from_string(const std::string& s) {
+  for (auto c : {Convection::upwind, Convection::linear_upwind, Convection::linear_upwind_limited,
+                 Convection::van_leer, Convection::van_leer_skew})
+    if (s == to_string(c)) return c;
+  throw std::invalid_argument("unknown convection scheme '" + s +
+                              "' (upwind, linear-upwind, linear-upwind-limited, van-leer, "
+                              "van-leer-skew)");
+}
 
 namespace {
 // van Leer's limited value at the mid-point of the upwind centre C and downwind centre D, with

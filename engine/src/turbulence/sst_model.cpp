@@ -29,10 +29,10 @@ void require(bool ok, const std::string& what) {
 void check_wall_distance(const fv::Mesh& mesh, std::span<const double> d) {
   const auto n = static_cast<std::size_t>(mesh.cells());
   require(d.size() == n, fmt::format("{} wall distances for {} cells", d.size(), n));
-  for (std::size_t c = 0; c < n; ++c)
-    require(
-        d[c] > 0 && std::isfinite(d[c]),
-        fmt::format("the wall distance of {} is {}", fv::cell_at(mesh, static_cast<int>(c)), d[c]));
+  for (std::size_t c = 0; c < n; ++c)  // the message formatted only for a bad value
+    if (!(d[c] > 0 && std::isfinite(d[c])))
+      require(false, fmt::format("the wall distance of {} is {}",
+                                 fv::cell_at(mesh, static_cast<int>(c)), d[c]));
 }
 }  // namespace
 
@@ -137,10 +137,10 @@ void SstModel::start_from(std::vector<double> k0, std::vector<double> omega0) {
   require(k0.size() == n && omega0.size() == n,
           fmt::format("start_from: {} k and {} omega values for {} cells", k0.size(), omega0.size(),
                       n));
-  for (std::size_t c = 0; c < n; ++c)
-    require(k0[c] >= 0 && omega0[c] > 0 && std::isfinite(k0[c]) && std::isfinite(omega0[c]),
-            fmt::format("start_from: k {} and omega {} in {}", k0[c], omega0[c],
-                        fv::cell_at(mesh_, static_cast<int>(c))));
+  for (std::size_t c = 0; c < n; ++c)  // the message formatted only for a bad value
+    if (!(k0[c] >= 0 && omega0[c] > 0 && std::isfinite(k0[c]) && std::isfinite(omega0[c])))
+      require(false, fmt::format("start_from: k {} and omega {} in {}", k0[c], omega0[c],
+                                 fv::cell_at(mesh_, static_cast<int>(c))));
   k0_ = std::move(k0);
   omega0_ = std::move(omega0);
 }

@@ -5,14 +5,16 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
-#include "../fv/parallel.hpp"
 #include "auvloop/mesher/wall_triangles.hpp"
 
 namespace auvloop::engine::turbulence {
@@ -173,11 +175,15 @@ WallDistances::Work WallDistances::refresh(bool all, std::span<const std::vector
     const auto& old = taken_at_[g];
     auto& entries = entries_[g];
     auto& distance = distance_[g];
-    // Counts are sums of integers, exact in any order.
-    const auto counts = fv::parallel_sum<2>(
-        part.cells,
-        [&](int b, int e, std::array<double, 2>& count) {
-          for (auto c = static_cast<std::size_t>(b); c < static_cast<std::size_t>(e); ++c) {
+    // Shared out dynamically (work stealing), since the exact queries cluster round the moved
+    // walls: each cell's entries depend on that cell alone, and the counts are sums of integers,
+    // so neither depends on who ran what.
+    std::atomic<long> bounds{0}, queries{0};
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, static_cast<std::size_t>(part.cells), 64),
+        [&](const tbb::blocked_range<std::size_t>& range) {
+          std::array<long, 2> count{0, 0};
+          for (std::size_t c = range.begin(); c < range.end(); ++c) {
             const Eigen::Vector3d& x = part.mesh->centre(part.first + static_cast<int>(c));
             Entry* row = &entries[c * H];
             // Step 4: the new bounds of the changed pairs.
@@ -209,10 +215,11 @@ WallDistances::Work WallDistances::refresh(bool all, std::span<const std::vector
               count[1] += 1;
             }
           }
-        },
-        64);
-    work.bounds += static_cast<long>(counts[0]);
-    work.queries += static_cast<long>(counts[1]);
+          bounds += count[0];
+          queries += count[1];
+        });
+    work.bounds += bounds.load();
+    work.queries += queries.load();
     for (std::size_t h = 0; h < H; ++h)
       if (changed[h]) taken_at_[g][h] = T[h];
   }

@@ -88,7 +88,8 @@ RotatingRestResult rotating_frame_at_rest(const ChannelGrid& g, double rate, dou
 }
 
 UnconfinedCylinderResult unconfined_cylinder(const mesher::UnconfinedCylinderSpec& g, bool towed,
-                                             double dt, double end_time, int measured_periods) {
+                                             double dt, double end_time, int measured_periods,
+                                             fv::Convection convection) {
   const auto t0 = std::chrono::steady_clock::now();
   constexpr double U = 1.0;  // m/s
   const double D = g.diameter;
@@ -101,6 +102,7 @@ UnconfinedCylinderResult unconfined_cylinder(const mesher::UnconfinedCylinderSpe
   s.outer_iterations = 2;
   s.tolerance = 1e-8;
   s.max_courant = 20;
+  s.convection = convection;
   fv::Pimple flow(mesh, s);
   flow.set_overset(&overset);
   for (const char* side :

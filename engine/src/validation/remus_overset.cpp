@@ -107,14 +107,19 @@ RemusOversetResult remus_overset(const RemusOversetRun& run) {
   for (int n = 0; n < r.planned_steps; ++n) {  // 2.
     const bool turn = n >= straight_steps;
     try {
-      double reassembly = 0;
+      double reassembly = 0, wall_distance = 0;
       if (turn) {
         for (std::size_t k = 0; k < fins; ++k) deflection[k] += rates[k] * run.dt;
         const auto ta = std::chrono::steady_clock::now();
         sys.set_fins(deflection);
-        if (sst) follow_walls();
+        if (sst) {
+          const auto tw = std::chrono::steady_clock::now();
+          follow_walls();
+          wall_distance = seconds_since(tw);
+        }
         reassembly = seconds_since(ta);
         r.assembly_seconds += reassembly;
+        r.wall_distance_seconds += wall_distance;
       }
       flow.set_motion(sys.motions(body, turn ? rates : at_rest));
       const auto ts = std::chrono::steady_clock::now();
@@ -125,7 +130,7 @@ RemusOversetResult remus_overset(const RemusOversetRun& run) {
       r.max_courant = std::max(r.max_courant, rep.max_courant);
       r.status_changes += rep.status_changes;
       r.uncovered_cells += rep.uncovered_cells;
-      if (run.on_step) run.on_step(rep, reassembly, step_seconds);
+      if (run.on_step) run.on_step(rep, reassembly, wall_distance, step_seconds);
     } catch (const fv::DivergenceError& e) {
       r.failure = e.what();
       break;

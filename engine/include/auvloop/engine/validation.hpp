@@ -157,8 +157,10 @@ struct UnconfinedCylinderResult {
   double max_courant = 0, seconds = 0;
   std::vector<double> t, cd, cl;
 };
-UnconfinedCylinderResult unconfined_cylinder(const mesher::UnconfinedCylinderSpec& g, bool towed,
-                                             double dt, double end_time, int measured_periods);
+// `convection`: of U (the case's van_leer_skew; a grid study may try another).
+UnconfinedCylinderResult unconfined_cylinder(
+    const mesher::UnconfinedCylinderSpec& g, bool towed, double dt, double end_time,
+    int measured_periods, fv::Convection convection = fv::Convection::van_leer_skew);
 
 // pitching-foil (pitching_foil.cpp): a NACA 0012 of chord c = 1 m in a stream U = 1 m/s at
 // Re = U c / nu = 1000, pitching about its quarter chord as theta(t) = amplitude cos(omega t)
@@ -184,7 +186,8 @@ PitchingFoilResult pitching_foil(const mesher::FoilOversetSpec& g, bool overset,
 // the fins at rest, then `turning` seconds with one fin or every fin turning at `fin_rate`
 // (rad/s), steps of dt. Per step: the continuity error over the active cells, the largest
 // interface flux, the hull's force, the re-assembly's time; `on_step` sees every step's report,
-// its re-assembly's and its Pimple::step's wall-clock seconds (progress, benchmarks).
+// its re-assembly's (the wall distances' update included, SST), the wall distances' alone and
+// its Pimple::step's wall-clock seconds (progress, benchmarks).
 struct RemusOversetRun {
   std::string preset = "coarse";
   double speed = 1.54, dt = 2e-3;        // m/s, s
@@ -209,7 +212,8 @@ struct RemusOversetRun {
   bool ambient_sources = false;
   fv::AsymmetricMethod turbulence_solver = fv::AsymmetricMethod::bicgstab_jacobi;
   bool keep_fields = false;  // the result holds the last step's fields
-  std::function<void(const fv::StepReport&, double reassembly_seconds, double step_seconds)>
+  std::function<void(const fv::StepReport&, double reassembly_seconds, double wall_distance_seconds,
+                     double step_seconds)>
       on_step;
 };
 struct RemusOversetResult {
@@ -218,6 +222,7 @@ struct RemusOversetResult {
   double max_continuity = 0, max_interface_flux = 0, max_courant = 0;
   int status_changes = 0, uncovered_cells = 0;
   double seconds = 0, assembly_seconds = 0;
+  double wall_distance_seconds = 0;   // the part of assembly_seconds that updates wall distances
   std::vector<double> t, drag;        // hull force along -x (N per unit density, m^4/s^2)
   std::vector<double> drag_pressure;  // its pressure part (the rest is shear)
   double hull_y_plus_mean = 0, hull_y_plus_max = 0;  // SST: the hull's first cells at the end

@@ -7,6 +7,7 @@
 
 #include <array>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "auvloop/engine/fv/field.hpp"
@@ -81,6 +82,11 @@ enum class Convection {
   // the skewness). The default.
   van_leer_skew,
 };
+// "upwind", "linear-upwind", "linear-upwind-limited", "van-leer", "van-leer-skew" (the names
+// command lines and case files use).
+const char* to_string(Convection c);
+// The inverse; throws std::invalid_argument naming the accepted names.
+Convection convection_from_string(const std::string& s);
 struct ConvectionTerm {
   const Mesh* m;
   std::span<const double> flux;

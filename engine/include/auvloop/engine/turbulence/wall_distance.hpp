@@ -31,10 +31,10 @@
 // fv::MovingOverset) is taken component by component: component k's cells and the wall faces of
 // those cells are a grid of their own, at their merged positions, whose placement is the
 // component's axes relative to where it was merged (update(axes)), so the same steps apply.
-// Every cell's entries depend on that cell alone, in parallel over cells: the distances do not
-// depend on the number of threads, and after any sequence of updates they are the ones a new
-// WallDistances at the final placements computes (bit for bit, unless a relative placement moved
-// by round-off only: then by round-off).
+// Every cell's entries depend on that cell alone, in parallel over cells (shared out dynamically:
+// the queries cluster round a moved wall): the distances do not depend on the number of threads,
+// and after any sequence of updates they are the ones a new WallDistances at the final placements
+// computes (bit for bit, unless a relative placement moved by round-off only: then by round-off).
 #pragma once
 
 #include <span>
