@@ -81,9 +81,9 @@ int main(int argc, char** argv) {
       "dt %.4g end %.4g %s: %d cells (%d active), max Courant %.2f; St %.4f [0.164, 0.165] mean "
       "cD %.4f [1.33, 1.35] cL amplitude %.4f [0.33, 0.339] over %d periods (drift %.1e); "
       "%.0f s\n",
-      towed ? "towed" : "fixed", g.around, g.radial_cells, g.radial_ratio, g.outer_radius,
-      g.extent, g.core_upstream, g.core_downstream, g.core_side, g.growth, dt, end,
-      convection.c_str(), r.cells, r.active_cells, r.max_courant, r.strouhal, r.cd_mean,
-      r.cl_amplitude, r.periods, r.period_drift, r.seconds);
+      towed ? "towed" : "fixed", g.around, g.radial_cells, g.radial_ratio, g.outer_radius, g.extent,
+      g.core_upstream, g.core_downstream, g.core_side, g.growth, dt, end, convection.c_str(),
+      r.cells, r.active_cells, r.max_courant, r.strouhal, r.cd_mean, r.cl_amplitude, r.periods,
+      r.period_drift, r.seconds);
   return r.periods > 0 ? 0 : 1;
 }

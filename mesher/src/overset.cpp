@@ -771,7 +771,6 @@ struct OversetAssembler::Impl {
   // they interpolate (no stencil extrapolates). A receiver without such a stencil, or a singular
   // system, keeps its fallback.
   void solve_knots(Assembly& a) const {
-    forget_seeds();  // a serial stage
     std::vector<std::pair<int, int>> knots;
     std::vector<std::vector<int>> index(grids.size());
     std::vector<std::vector<char>> usable(grids.size());
@@ -789,8 +788,9 @@ struct OversetAssembler::Impl {
     }
     if (knots.empty()) return;
     std::vector<KnotRow> rows(knots.size());
-    for (std::size_t k = 0; k < knots.size(); ++k)
+    for_blocks(knots.size(), [&](std::size_t k) {
       rows[k] = knot_row(a, usable, index, knots[k].first, knots[k].second);
+    });
     for (bool changed = true; changed;) {  // drop rows that lean on receivers without rows
       changed = false;
       for (auto& row : rows)
@@ -895,7 +895,6 @@ struct OversetAssembler::Impl {
 
   // One pass of chain(): true if it chained any receiver.
   bool chain_once(Assembly& a) const {
-    forget_seeds();  // a serial stage
     std::vector<std::vector<char>> relay(grids.size());
     for (std::size_t h = 0; h < grids.size(); ++h) {
       const auto& ha = a.grids[h];
@@ -906,18 +905,27 @@ struct OversetAssembler::Impl {
     std::vector<std::vector<int>> no_knots(grids.size());
     for (std::size_t h = 0; h < grids.size(); ++h) no_knots[h].assign(relay[h].size(), -1);
     std::vector<std::map<int, std::vector<Entry>>> chained(grids.size());
-    for (std::size_t g = 0; g < grids.size(); ++g)
+    for (std::size_t g = 0; g < grids.size(); ++g) {
+      // The rows in parallel: each reads the pass's relays and their stencils, which change only
+      // after the pass (replace_stencils below).
+      std::vector<int> receivers;
       for (std::size_t c = 0; c < a.grids[g].status.size(); ++c)
-        if (a.grids[g].status[c] == CellStatus::fringe && a.grids[g].fallback[c]) {
-          const KnotRow row =
-              knot_row(a, relay, no_knots, static_cast<int>(g), static_cast<int>(c));
-          if (!row.ok) continue;
-          a.grids[g].donor_grid[c] = row.grid;
-          a.grids[g].donor_cell[c] = row.cell;
-          auto& entries = chained[g][static_cast<int>(c)];
-          for (const auto& [donor, w] : row.known)
-            entries.push_back({donor.first, donor.second, w});
-        }
+        if (a.grids[g].status[c] == CellStatus::fringe && a.grids[g].fallback[c])
+          receivers.push_back(static_cast<int>(c));
+      std::vector<KnotRow> rows(receivers.size());
+      for_blocks(receivers.size(), [&](std::size_t i) {
+        rows[i] = knot_row(a, relay, no_knots, static_cast<int>(g), receivers[i]);
+      });
+      for (std::size_t i = 0; i < receivers.size(); ++i) {
+        const KnotRow& row = rows[i];
+        if (!row.ok) continue;
+        const auto c = static_cast<std::size_t>(receivers[i]);
+        a.grids[g].donor_grid[c] = row.grid;
+        a.grids[g].donor_cell[c] = row.cell;
+        auto& entries = chained[g][receivers[i]];
+        for (const auto& [donor, w] : row.known) entries.push_back({donor.first, donor.second, w});
+      }
+    }
     bool any = false;
     for (std::size_t g = 0; g < grids.size(); ++g)
       if (!chained[g].empty()) {
@@ -933,8 +941,14 @@ struct OversetAssembler::Impl {
                                bool are_chained = true) {
     std::vector<int> offsets{0}, grids_out, cells_out;
     std::vector<double> weights_out;
+    offsets.reserve(ga.stencil_offsets.size());
+    grids_out.reserve(ga.stencil_grids.size());
+    cells_out.reserve(ga.stencil_cells.size());
+    weights_out.reserve(ga.stencil_weights.size());
+    auto next = chained.begin();  // the receivers in cell order, as the loop meets them
     for (std::size_t c = 0; c + 1 < ga.stencil_offsets.size(); ++c) {
-      const auto it = chained.find(static_cast<int>(c));
+      const auto it =
+          next != chained.end() && next->first == static_cast<int>(c) ? next++ : chained.end();
       if (it == chained.end()) {
         for (int k = ga.stencil_offsets[c]; k < ga.stencil_offsets[c + 1]; ++k) {
           const auto ku = static_cast<std::size_t>(k);

@@ -144,9 +144,10 @@ class LinearSolver {
   // solves independent of the run's history, so that a restart continues bitwise).
   void plan_coupled(const Matrix& m, const ExtraEntries& extra);
   // Solves the bordered system (Border) for x (n values, the initial guess) and lambda (one per
-  // column, likewise): flexible GMRES preconditioned by cg-amg's multigrid cycle of m and the
-  // border's diagonal (the bordered matrix is m plus a low-rank part, so a few more iterations
-  // than m alone). `method` must be cg_amg (std::invalid_argument otherwise).
+  // column, likewise): flexible GMRES preconditioned by the block factorisation of the bordered
+  // matrix with cg-amg's multigrid cycle of m for m^-1 and one cycle per column for the border's
+  // responses (so about as many iterations as m alone). `method` must be cg_amg
+  // (std::invalid_argument otherwise).
   SolveStats solve_bordered(const Matrix& m, const Border& border, std::span<double> x,
                             std::span<double> lambda, SymmetricMethod method);
 
