@@ -418,9 +418,9 @@ struct OversetAssembler::Impl {
                   std::vector<double>& w, const std::vector<char>* relay = nullptr) const {
     const auto& hd = grids[static_cast<std::size_t>(h)];
     // Cells reached are stamped (mark[cell] == stamp) instead of searched for in a list.
-    Scratch& scratch_ = local();
-    auto& mark = scratch_.marks[static_cast<std::size_t>(h)];
-    const int stamp = ++scratch_.stamps[static_cast<std::size_t>(h)];
+    Scratch& own = local();
+    auto& mark = own.marks[static_cast<std::size_t>(h)];
+    const int stamp = ++own.stamps[static_cast<std::size_t>(h)];
     std::vector<int> reached{loc};
     mark[static_cast<std::size_t>(loc)] = stamp;
     // The weights are non-negative (convex_weights: no value beyond its donors', so that no
@@ -617,10 +617,10 @@ struct OversetAssembler::Impl {
       std::vector<int> fringe;
       for (std::size_t c = 0; c < n; ++c)
         if (ga.status[c] == CellStatus::fringe) fringe.push_back(static_cast<int>(c));
-      std::vector<Donors> found(fringe.size());
+      std::vector<Donors> donors(fringe.size());
       for_blocks(fringe.size(), [&](std::size_t i) {
         const auto c = static_cast<std::size_t>(fringe[i]);
-        Donors& d = found[i];
+        Donors& d = donors[i];
         if (previous && keep(a, *previous, *redo, g, c)) {
           d.kind = Donors::kept;
           return;
@@ -649,7 +649,7 @@ struct OversetAssembler::Impl {
       std::size_t next = 0;
       for (std::size_t c = 0; c < n; ++c) {
         if (ga.status[c] == CellStatus::fringe) {
-          const Donors& d = found[next++];
+          const Donors& d = donors[next++];
           switch (d.kind) {
             case Donors::refitted:
               ga.donor_grid[c] = previous->grids[g].donor_grid[c];
@@ -698,9 +698,9 @@ struct OversetAssembler::Impl {
       std::vector<int> unchained;
       for (int c : pending[g])
         if (!ga.chained[static_cast<std::size_t>(c)]) unchained.push_back(c);
-      std::vector<Donors> found(unchained.size());
+      std::vector<Donors> donors(unchained.size());
       for_blocks(unchained.size(), [&](std::size_t i) {
-        Donors& d = found[i];
+        Donors& d = donors[i];
         bool fb = false;
         d.kind = find_donor(static_cast<int>(g), unchained[i], -1, -1, a, d.cells, d.w, d.grid,
                             d.cell, fb, true)
@@ -710,7 +710,7 @@ struct OversetAssembler::Impl {
       std::map<int, std::vector<Entry>> fallbacks;
       for (std::size_t i = 0; i < unchained.size(); ++i) {
         const auto cu = static_cast<std::size_t>(unchained[i]);
-        const Donors& d = found[i];
+        const Donors& d = donors[i];
         if (d.kind == Donors::pending) {
           ga.status[cu] = CellStatus::orphan;
           ga.fallback[cu] = 0;

@@ -543,6 +543,14 @@ SolveStats LinearSolver::solve_bordered(const Matrix& m, const Border& border, s
   auto& R = I.bordered_r;
   C.resize(K);
   R.resize(K);
+  // C_j . v over column j's sparse rows, in order.
+  const auto column_dot = [&](std::size_t j, std::span<const double> v) {
+    const auto& col = border.columns[j];
+    double d = 0;
+    for (std::size_t e = 0; e < col.rows.size(); ++e)
+      d += -col.values[e] * v[static_cast<std::size_t>(col.rows[e])];
+    return d;
+  };
   const auto Ki = static_cast<Eigen::Index>(K);
   Eigen::MatrixXd S = Eigen::MatrixXd::Zero(Ki, Ki);
   for (std::size_t k = 0; k < K; ++k) {
@@ -554,14 +562,9 @@ SolveStats LinearSolver::solve_bordered(const Matrix& m, const Border& border, s
     cycle(C[k], R[k]);
     S(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(k)) = -col.diag;
   }
-  for (std::size_t j = 0; j < K; ++j)  // S = E - C^T R, C's sparse rows in order
-    for (std::size_t k = 0; k < K; ++k) {
-      const auto& col = border.columns[j];
-      double d = 0;
-      for (std::size_t e = 0; e < col.rows.size(); ++e)
-        d += -col.values[e] * R[k][static_cast<std::size_t>(col.rows[e])];
-      S(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(k)) -= d;
-    }
+  for (std::size_t j = 0; j < K; ++j)  // S = E - C^T R
+    for (std::size_t k = 0; k < K; ++k)
+      S(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(k)) -= column_dot(j, R[k]);
   const Eigen::PartialPivLU<Eigen::MatrixXd> S_lu(S);
   // A Schur complement that is not positive (an R far from A^-1 C): the block-diagonal form.
   const bool factored = S.diagonal().minCoeff() > 0 && S_lu.inverse().allFinite();
@@ -572,13 +575,8 @@ SolveStats LinearSolver::solve_bordered(const Matrix& m, const Border& border, s
       for (std::size_t k = 0; k < K; ++k) z[nu + k] = y[nu + k] / -border.columns[k].diag;
       return;
     }
-    for (std::size_t k = 0; k < K; ++k) {  // R^T y_p = C^T B y_p: C's sparse rows of z_p
-      const auto& col = border.columns[k];
-      double d = 0;
-      for (std::size_t e = 0; e < col.rows.size(); ++e)
-        d += -col.values[e] * z[static_cast<std::size_t>(col.rows[e])];
-      t[static_cast<Eigen::Index>(k)] = y[nu + k] - d;
-    }
+    for (std::size_t k = 0; k < K; ++k)  // R^T y_p = C^T B y_p
+      t[static_cast<Eigen::Index>(k)] = y[nu + k] - column_dot(k, z.first(nu));
     const Eigen::VectorXd z_lambda = S_lu.solve(t);
     for (std::size_t k = 0; k < K; ++k) z[nu + k] = z_lambda[static_cast<Eigen::Index>(k)];
     parallel_for(n, [&](int i) {

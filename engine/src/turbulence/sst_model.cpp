@@ -22,8 +22,12 @@ using fv::parallel_for;
 using fv::Scratch;
 
 namespace {
+[[noreturn]] void fail(const std::string& what) {
+  throw std::invalid_argument("SST k-omega: " + what);
+}
+
 void require(bool ok, const std::string& what) {
-  if (!ok) throw std::invalid_argument("SST k-omega: " + what);
+  if (!ok) fail(what);
 }
 
 void check_wall_distance(const fv::Mesh& mesh, std::span<const double> d) {
@@ -31,8 +35,8 @@ void check_wall_distance(const fv::Mesh& mesh, std::span<const double> d) {
   require(d.size() == n, fmt::format("{} wall distances for {} cells", d.size(), n));
   for (std::size_t c = 0; c < n; ++c)  // the message formatted only for a bad value
     if (!(d[c] > 0 && std::isfinite(d[c])))
-      require(false, fmt::format("the wall distance of {} is {}",
-                                 fv::cell_at(mesh, static_cast<int>(c)), d[c]));
+      fail(fmt::format("the wall distance of {} is {}", fv::cell_at(mesh, static_cast<int>(c)),
+                       d[c]));
 }
 }  // namespace
 
@@ -139,8 +143,8 @@ void SstModel::start_from(std::vector<double> k0, std::vector<double> omega0) {
                       n));
   for (std::size_t c = 0; c < n; ++c)  // the message formatted only for a bad value
     if (!(k0[c] >= 0 && omega0[c] > 0 && std::isfinite(k0[c]) && std::isfinite(omega0[c])))
-      require(false, fmt::format("start_from: k {} and omega {} in {}", k0[c], omega0[c],
-                                 fv::cell_at(mesh_, static_cast<int>(c))));
+      fail(fmt::format("start_from: k {} and omega {} in {}", k0[c], omega0[c],
+                       fv::cell_at(mesh_, static_cast<int>(c))));
   k0_ = std::move(k0);
   omega0_ = std::move(omega0);
 }
