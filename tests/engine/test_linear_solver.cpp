@@ -193,7 +193,17 @@ TEST(LinearSolver, BorderedSystemMatchesADirectSolveOfTheAssembledMatrix) {
   EXPECT_LT(error, 1e-9 * scale);
   EXPECT_GT(std::abs(x[n]), 1e-3 * scale);  // the border is not idle
   EXPECT_EQ(x, solve(2));
+  // The border rides through the multigrid (amg_pcg.hpp, steps B): about the iterations of the
+  // matrix alone, and a plain solve on the same hierarchy afterwards is unchanged.
   fv::LinearSolver solver(mesh, fv::Tolerance(1e-12));
+  std::vector<double> plain(n, 0.0), again(n, 0.0), xb(n, 0.0), lb(2, 0.0);
+  const auto alone = solver.solve_symmetric(m, plain, fv::SymmetricMethod::cg_amg);
+  const auto bordered = solver.solve_bordered(m, border, xb, lb, fv::SymmetricMethod::cg_amg);
+  const auto after = solver.solve_symmetric(m, again, fv::SymmetricMethod::cg_amg);
+  std::printf("iterations: matrix alone %d, bordered %d\n", alone.iterations, bordered.iterations);
+  EXPECT_LE(bordered.iterations, alone.iterations + 2);
+  EXPECT_EQ(after.iterations, alone.iterations);
+  EXPECT_EQ(again, plain);
   std::vector<double> x0(n), lambda(2);
   EXPECT_THROW(solver.solve_bordered(m, border, x0, lambda, fv::SymmetricMethod::cholmod),
                std::invalid_argument);

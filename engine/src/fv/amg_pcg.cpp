@@ -185,6 +185,19 @@ struct AmgPcg::Hierarchy {
   Eigen::MatrixXd coarsest_dense;
   Eigen::VectorXd coarsest_x;
   std::vector<double> r, z, p, q;  // flexible CG on the finest level
+  // The border of a bordered solve (steps B): K columns per level (rows ascending), E's
+  // diagonal, the coarsest level's bordered factor. K == 0 outside solve_bordered; every level's
+  // vectors hold n_l + K values.
+  struct BorderColumns {
+    std::vector<std::vector<int>> rows;
+    std::vector<std::vector<double>> values;
+  };
+  std::size_t K = 0;
+  std::vector<BorderColumns> border;  // per level
+  std::vector<double> border_diag;
+  Eigen::LLT<Eigen::MatrixXd> coarsest_bordered;
+  std::vector<double> border_sum;  // B1's scratch: one value per row of level 1
+  std::vector<char> border_seen;
 
   Hierarchy(const BlockCsr& A, bool is_symmetric) : symmetric(is_symmetric) {
     levels.reserve(kMaxLevels);  // no reallocation: the levels' matrix pointers stay valid
@@ -215,9 +228,127 @@ struct AmgPcg::Hierarchy {
       levels.back().own.keep_single();
       levels.back().A = &levels.back().own;
     }
-    for (Level& L : levels) L.allocate(L.A->rows());
-    const auto n = static_cast<std::size_t>(A.rows());
+    size_vectors();
+  }
+
+  // Every level's vectors for n_l + K values (no allocation once they have held as many).
+  void size_vectors() {
+    for (Level& L : levels) L.allocate(L.A->rows() + static_cast<int>(K));
+    const auto n = static_cast<std::size_t>(levels[0].A->rows()) + K;
     for (auto* v : {&r, &z, &p, &q}) v->assign(n, 0.0);
+  }
+
+  // B1: the border on every level (sign * the caller's values), and the coarsest bordered factor
+  // (after load_coefficients, from coarsest_dense).
+  void set_border(const Border& given, double sign) {
+    if (given.columns.size() != K) {
+      K = given.columns.size();
+      size_vectors();
+    }
+    border.resize(levels.size());
+    border_diag.resize(K);
+    for (std::size_t k = 0; k < K; ++k) {
+      const auto& col = given.columns[k];
+      border_diag[k] = sign * col.diag;
+      auto& rows0 = border[0].rows;
+      auto& values0 = border[0].values;
+      rows0.resize(K);
+      values0.resize(K);
+      rows0[k] = col.rows;
+      values0[k].resize(col.values.size());
+      for (std::size_t e = 0; e < col.values.size(); ++e) values0[k][e] = sign * col.values[e];
+    }
+    for (std::size_t l = 0; l + 1 < levels.size(); ++l) {
+      const Restriction& R = levels[l].to_coarse;
+      const auto nc = static_cast<std::size_t>(levels[l + 1].A->rows());
+      border_sum.resize(std::max(border_sum.size(), nc));
+      border_seen.resize(std::max(border_seen.size(), nc), 0);
+      auto& fine = border[l];
+      auto& coarse = border[l + 1];
+      coarse.rows.resize(K);
+      coarse.values.resize(K);
+      for (std::size_t k = 0; k < K; ++k) {
+        auto& rows = coarse.rows[k];
+        rows.clear();
+        // Sums in ascending fine row order per aggregate, aggregates listed in ascending order.
+        for (std::size_t e = 0; e < fine.rows[k].size(); ++e) {
+          const auto I = static_cast<std::size_t>(R.agg[static_cast<std::size_t>(fine.rows[k][e])]);
+          if (!border_seen[I]) {
+            border_seen[I] = 1;
+            border_sum[I] = 0;
+            rows.push_back(static_cast<int>(I));
+          }
+          border_sum[I] += fine.values[k][e];
+        }
+        std::sort(rows.begin(), rows.end());
+        auto& values = coarse.values[k];
+        values.resize(rows.size());
+        for (std::size_t e = 0; e < rows.size(); ++e) {
+          const auto I = static_cast<std::size_t>(rows[e]);
+          values[e] = border_sum[I];
+          border_seen[I] = 0;
+        }
+      }
+    }
+    const auto nc = coarsest_dense.rows();
+    const auto Ki = static_cast<Eigen::Index>(K);
+    Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(nc + Ki, nc + Ki);
+    dense.topLeftCorner(nc, nc) = coarsest_dense;
+    const auto& last = border.back();
+    for (std::size_t k = 0; k < K; ++k) {
+      const auto j = nc + static_cast<Eigen::Index>(k);
+      dense(j, j) = border_diag[k];
+      for (std::size_t e = 0; e < last.rows[k].size(); ++e) {
+        dense(last.rows[k][e], j) = last.values[k][e];
+        dense(j, last.rows[k][e]) = last.values[k][e];
+      }
+    }
+    coarsest_bordered.compute(dense);
+    if (coarsest_bordered.info() != Eigen::Success)
+      throw std::runtime_error("AMG: the coarsest bordered matrix is not positive definite");
+    coarsest_x.resize(nc + Ki);
+  }
+
+  void clear_border() {
+    if (K == 0) return;
+    K = 0;
+    size_vectors();
+    coarsest_x.resize(levels.back().A->rows());
+  }
+
+  // B2: lambda_k = (g_k - C_k . x) / E_k on level l (x, b: n_l + K values).
+  void relax_border(std::size_t l, std::span<const double> b, std::span<double> x) const {
+    const auto n = static_cast<std::size_t>(levels[l].A->rows());
+    const auto& B = border[l];
+    for (std::size_t k = 0; k < K; ++k) {
+      double s = b[n + k];
+      for (std::size_t e = 0; e < B.rows[k].size(); ++e)
+        s -= B.values[k][e] * x[static_cast<std::size_t>(B.rows[k][e])];
+      x[n + k] = s / border_diag[k];
+    }
+  }
+
+  // y = A_l x with the border, and x . y (B3).
+  template <bool Single>
+  double multiply_dot(std::size_t l, std::span<const double> x, std::span<double> y) const {
+    const BlockCsr& A = *levels[l].A;
+    const auto n = static_cast<std::size_t>(A.rows());
+    double d = A.multiply_dot<Single>(x.first(n), y.first(n));
+    if (K == 0) return d;
+    const auto& B = border[l];
+    for (std::size_t k = 0; k < K; ++k) {
+      const double lambda = x[n + k];
+      double cx = 0;
+      for (std::size_t e = 0; e < B.rows[k].size(); ++e) {
+        const auto i = static_cast<std::size_t>(B.rows[k][e]);
+        cx += B.values[k][e] * x[i];
+        y[i] += B.values[k][e] * lambda;
+      }
+      y[n + k] = cx + border_diag[k] * lambda;
+      d += lambda *
+           (2 * cx + border_diag[k] * lambda);  // x_p.C lambda + lambda.(C^T x_p + E lambda)
+    }
+    return d;
   }
 
   // New coefficients of the finest matrix: every coarse level's and the coarsest factor.
@@ -247,20 +378,29 @@ struct AmgPcg::Hierarchy {
   void cycle(std::size_t l, std::span<const double> b, std::span<double> x) {
     Level& L = levels[l];
     const BlockCsr& A = *L.A;
+    const auto n = static_cast<std::size_t>(A.rows());
     if (l + 1 == levels.size()) {
-      const Eigen::Map<const Eigen::VectorXd> bv(b.data(), A.rows());
-      coarsest_x = symmetric ? Eigen::VectorXd(coarsest.solve(bv)) : coarsest_lu.solve(bv);
-      std::copy(coarsest_x.data(), coarsest_x.data() + A.rows(), x.begin());
+      const auto N = static_cast<Eigen::Index>(n + K);
+      const Eigen::Map<const Eigen::VectorXd> bv(b.data(), N);
+      if (K > 0) {
+        coarsest_x = coarsest_bordered.solve(bv);
+      } else {
+        coarsest_x = symmetric ? Eigen::VectorXd(coarsest.solve(bv)) : coarsest_lu.solve(bv);
+      }
+      std::copy(coarsest_x.data(), coarsest_x.data() + N, x.begin());
       return;
     }
     Level& C = levels[l + 1];
     const Restriction& R = L.to_coarse;
-    A.sweep<true>(b, x, false, true, L.scratch);  // from x = 0
+    const auto nc = static_cast<std::size_t>(C.A->rows());
+    A.sweep<true>(b.first(n), x.first(n), false, true, L.scratch);  // from x = 0
+    relax_border(l, b, x);
     // The restricted residual: the fine residual in one pass in row order (the matrix streams
     // from memory), then summed over each aggregate's members (a gather of one vector).
     parallel_for(
         A.rows(), [&](int i) { L.r[static_cast<std::size_t>(i)] = A.row_residual<true>(i, b, x); },
         kRowGrain);
+    border_residual(l, b, x, L.r);
     parallel_for(
         C.A->rows(),
         [&](int I) {
@@ -271,6 +411,7 @@ struct AmgPcg::Hierarchy {
           C.b[Is] = s;
         },
         kVectorGrain);
+    for (std::size_t k = 0; k < K; ++k) C.b[nc + k] = L.r[n + k];
     if (l + 2 == levels.size()) {
       cycle(l + 1, C.b, C.x);
     } else if (symmetric) {
@@ -285,7 +426,38 @@ struct AmgPcg::Hierarchy {
           x[is] += C.x[static_cast<std::size_t>(R.agg[is])];
         },
         kVectorGrain);
-    A.sweep<true>(b, x, true, false, L.scratch);
+    if (K == 0) {
+      A.sweep<true>(b, x, true, false, L.scratch);
+      return;
+    }
+    for (std::size_t k = 0; k < K; ++k) x[n + k] += C.x[nc + k];
+    relax_border(l, b, x);
+    // The rows' sweep with b - C lambda (L.r is free once restricted).
+    parallel_for(
+        A.rows(), [&](int i) { L.r[static_cast<std::size_t>(i)] = b[static_cast<std::size_t>(i)]; },
+        kVectorGrain);
+    const auto& B = border[l];
+    for (std::size_t k = 0; k < K; ++k)
+      for (std::size_t e = 0; e < B.rows[k].size(); ++e)
+        L.r[static_cast<std::size_t>(B.rows[k][e])] -= B.values[k][e] * x[n + k];
+    A.sweep<true>(std::span<const double>(L.r).first(n), x.first(n), true, false, L.scratch);
+  }
+
+  // r_p -= C lambda at the columns' rows, r_lambda = g - C^T x_p - E lambda (r_p holds b - A x).
+  void border_residual(std::size_t l, std::span<const double> b, std::span<const double> x,
+                       std::span<double> res) const {
+    if (K == 0) return;
+    const auto n = static_cast<std::size_t>(levels[l].A->rows());
+    const auto& B = border[l];
+    for (std::size_t k = 0; k < K; ++k) {
+      double s = b[n + k] - border_diag[k] * x[n + k];
+      for (std::size_t e = 0; e < B.rows[k].size(); ++e) {
+        const auto i = static_cast<std::size_t>(B.rows[k][e]);
+        res[i] -= B.values[k][e] * x[n + k];
+        s -= B.values[k][e] * x[i];
+      }
+      res[n + k] = s;
+    }
   }
 
   // Two flexible-CG steps on level l (its b to its x) preconditioned by cycle(l), the second
@@ -294,11 +466,10 @@ struct AmgPcg::Hierarchy {
   // cycle of unsmoothed aggregation about as good as a two-grid method at any depth.
   void kcycle(std::size_t l) {
     Level& L = levels[l];
-    const BlockCsr& A = *L.A;
-    const int n = A.rows();
+    const int n = L.A->rows() + static_cast<int>(K);  // with the border's values (B3)
     const auto each = [&](auto&& fn) { parallel_for(n, fn, kVectorGrain); };
     cycle(l, L.b, L.c1);
-    const double rho1 = A.multiply_dot<true>(L.c1, L.v1);
+    const double rho1 = multiply_dot<true>(l, L.c1, L.v1);
     const auto [alpha1, b_squared] = dot2(L.b, L.c1, L.b);
     if (!(rho1 > 0)) {  // keep the plain cycle
       L.x = L.c1;
@@ -322,7 +493,7 @@ struct AmgPcg::Hierarchy {
       return;
     }
     cycle(l, L.r1, L.x);  // c2 = L.x
-    const double beta = A.multiply_dot<true>(L.x, L.v2);
+    const double beta = multiply_dot<true>(l, L.x, L.v2);
     const auto [gamma, alpha2] = dot2(L.x, L.v1, L.r1);
     const double rho2 = beta - gamma * gamma / rho1;
     if (!(rho2 > 0)) {
@@ -415,16 +586,63 @@ void AmgPcg::prepare(const BlockCsr& A, bool changed) {
 void AmgPcg::precondition(const BlockCsr& A, bool changed, std::span<const double> r,
                           std::span<double> z) {
   prepare(A, changed);
+  h_->clear_border();
   h_->cycle(0, r, z);
 }
 
 SolveStats AmgPcg::solve(const BlockCsr& A, bool changed, std::span<const double> b,
                          std::span<double> x, const Tolerance& tolerance, int max_iterations) {
   prepare(A, changed);
+  h_->clear_border();
+  return fcg(start_solve(A, b, x, h_->r), x, tolerance, max_iterations);
+}
 
+SolveStats AmgPcg::solve_bordered(const BlockCsr& A, bool changed, const Border& border,
+                                  double sign, std::span<const double> b, std::span<double> x,
+                                  const Tolerance& tolerance, int max_iterations) {
+  if (!symmetric_) throw std::logic_error("AmgPcg::solve_bordered: a symmetric matrix only");
+  const auto K = border.columns.size();
+  const auto N = static_cast<std::size_t>(A.rows()) + K;
+  if (b.size() != N || x.size() != N)
+    throw std::invalid_argument("AmgPcg::solve_bordered: b and x need n + K values");
+  prepare(A, changed);
   auto& H = *h_;
-  const int n = A.rows();
-  const auto start = start_solve(A, b, x, H.r);
+  H.set_border(border, sign);
+  // The start as fgmres.cpp's, on the bordered matrix: r = b - A x and OpenFOAM's normalisation
+  // sum |A x - A xbar| + |b - A xbar| over the n + K values (A xbar = xbar A 1).
+  const int n = static_cast<int>(N);
+  const double xbar = parallel_sum<1>(n,
+                                      [&](int lo, int hi, std::array<double, 1>& s) {
+                                        for (int i = lo; i < hi; ++i)
+                                          s[0] += x[static_cast<std::size_t>(i)];
+                                      })[0] /
+                      std::max(n, 1);
+  H.multiply_dot<false>(0, x, H.q);  // A x
+  parallel_for(n, [&](int i) { H.z[static_cast<std::size_t>(i)] = 1.0; });
+  H.multiply_dot<false>(0, H.z, H.p);  // A 1
+  const auto s = parallel_sum<4>(n, [&](int lo, int hi, std::array<double, 4>& sum) {
+    for (int i = lo; i < hi; ++i) {
+      const auto c = static_cast<std::size_t>(i);
+      const double axbar = xbar * H.p[c];
+      H.r[c] = b[c] - H.q[c];
+      sum[0] += std::abs(H.r[c]);
+      sum[1] += H.r[c] * H.r[c];
+      sum[2] += b[c] * b[c];
+      sum[3] += std::abs(H.q[c] - axbar) + std::abs(b[c] - axbar);
+    }
+  });
+  SolveStart start;
+  start.normalisation = s[3] + 1e-300;
+  start.stats.initial_residual = start.stats.final_residual = s[0] / start.normalisation;
+  start.bnorm = std::max(std::sqrt(s[2]), 1e-300);
+  start.rnorm = std::sqrt(s[1]);
+  return fcg(start, x, tolerance, max_iterations);
+}
+
+SolveStats AmgPcg::fcg(const SolveStart& start, std::span<double> x, const Tolerance& tolerance,
+                       int max_iterations) {
+  auto& H = *h_;
+  const int n = H.levels[0].A->rows() + static_cast<int>(H.K);
   SolveStats stats = start.stats;
   const double norm = start.normalisation, bnorm = start.bnorm;
   double rnorm = start.rnorm;
@@ -434,7 +652,7 @@ SolveStats AmgPcg::solve(const BlockCsr& A, bool changed, std::span<const double
                [&](int i) { H.p[static_cast<std::size_t>(i)] = H.z[static_cast<std::size_t>(i)]; });
   double rz = dot(H.r, H.z);
   for (int it = 1; it <= max_iterations; ++it) {
-    const double alpha = rz / A.multiply_dot(H.p, H.q);
+    const double alpha = rz / H.multiply_dot<false>(0, H.p, H.q);
     const auto [r_squared, r_l1] =
         parallel_sum<2>(n, [&](int lo, int hi, std::array<double, 2>& s) {
           for (int i = lo; i < hi; ++i) {

@@ -23,6 +23,17 @@
 //      prolonged (added to every row of the aggregate), one backward sweep;
 //   4. flexible CG on the finest level (Polak-Ribiere beta, since the K-cycle is a nonlinear
 //      preconditioner; Notay, SIAM J. Sci. Comput. 22, 2000), stopping at |b - A x| <= tol |b|.
+// A bordered system (solve_bordered: an overset mesh's pressure equation with its mass balance,
+// K Lagrange multipliers lambda_k, each coupled to a sparse column C_k):
+//   B1. per level l the columns restricted with the rows, C_{l+1} = P^T C_l (summed over each
+//       aggregate), E unchanged: lambda stays a row of its own on every level, so the Galerkin
+//       matrix of level l+1 is the bordered P^T A_l P;
+//   B2. the smoother on level l: the row sweep (step 3), then per k the Gauss-Seidel update
+//       lambda_k = (g_k - C_k . x) / E_k; the backward sweep in the reverse order (lambda first,
+//       then the rows with b - C lambda): a symmetric smoother;
+//   B3. the coarsest level's dense Cholesky factor of the bordered matrix; the K-cycle's and the
+//       outer CG's products and dot products over the n + K values.
+// Without a border every step is the plain one, bit for bit.
 // The cycle (steps 3) reads every level's coefficients in single precision (BlockCsr::keep_single:
 // 8 instead of 12 bytes per entry, a third less memory traffic in the smoother and restriction,
 // where the solve spends its time) with every vector and sum in double; the Galerkin products
@@ -35,6 +46,7 @@
 #include <span>
 
 #include "auvloop/engine/fv/linear_solver.hpp"
+#include "krylov.hpp"
 #include "sparse.hpp"
 
 namespace auvloop::engine::fv {
@@ -59,6 +71,15 @@ class AmgPcg {
   // of from the first solve's: aggregates from a matrix that depends on the grid alone make
   // every solve independent of the run's history, so that a restart continues bitwise.
   void plan(const BlockCsr& A);
+  // Solves the bordered system [A C; C^T E] [x; lambda] = [b; g] (linear_solver.hpp's Border:
+  // K sparse columns C_k = sign * values, E = sign * diag, with `sign` the one A was loaded with,
+  // so that the whole matrix is positive definite); b and x hold n + K values, x the guess. The
+  // border rides through the hierarchy as K rows of their own on every level, never aggregated
+  // (step B of amg_pcg.cpp), so the cycle sees the border's mode and the plain flexible CG of
+  // solve() applies, with about the iterations of A alone. `changed` as for solve.
+  SolveStats solve_bordered(const BlockCsr& A, bool changed, const Border& border, double sign,
+                            std::span<const double> b, std::span<double> x,
+                            const Tolerance& tolerance, int max_iterations);
   // One cycle from zero as the preconditioner of another Krylov method: z ~ A^-1 r (the K-cycle
   // makes it a nonlinear map, hence flexible GMRES, fgmres.cpp). `changed` as for solve: pass it
   // with a solve's first call, false after.
@@ -70,6 +91,9 @@ class AmgPcg {
 
  private:
   struct Hierarchy;
+  // Step 4 from the start's residual (in the hierarchy's r) on the n + K values of the system.
+  SolveStats fcg(const SolveStart& start, std::span<double> x, const Tolerance& tolerance,
+                 int max_iterations);
   // The hierarchy for A, planned if there is none, with A's coefficients if `changed`.
   void prepare(const BlockCsr& A, bool changed);
   std::unique_ptr<Hierarchy> h_;

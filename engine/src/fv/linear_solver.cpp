@@ -176,10 +176,8 @@ struct LinearSolver::Impl {
   std::vector<double> b;        // the right-hand side as loaded
   bool loaded = false;
   KrylovWork work;
-  FgmresWork fgmres_work;                      // solve_coupled's and solve_bordered's
+  FgmresWork fgmres_work;                      // solve_coupled's
   std::vector<double> bordered_b, bordered_x;  // solve_bordered's system: n + K values
-  // solve_bordered's preconditioner: per column its dense values and its response R_k.
-  std::vector<std::vector<double>> bordered_c, bordered_r;
   // solve_coupled's matrix: the face pattern and the extra entries' pattern it was built for
   // (an overset assembly: rebuilt, with its multigrid, when the assembly changes).
   struct Coupled {
@@ -481,12 +479,13 @@ void LinearSolver::plan_coupled(const Matrix& m, const ExtraEntries& extra) {
 
 SolveStats LinearSolver::solve_bordered(const Matrix& m, const Border& border, std::span<double> x,
                                         std::span<double> lambda, SymmetricMethod method) {
-  // Flexible GMRES, not flexible CG: with the block-diagonal preconditioner the border cost
-  // FGMRES about 4 more iterations a solve on the REMUS coarse system (24 against 20), truncated
-  // flexible CG 13 more. With the block factorisation below: FGMRES 96-98 iterations a step
-  // against the matrix's own 91 (110 block-diagonal), flexible CG 104 (pressure stage 0.445 s
-  // against FGMRES's 0.471 s, within the runs' noise: not kept).
-  constexpr int kRestart = 30, kMaxIterations = 2000;
+  // cg-amg's flexible CG with the border on every level of its multigrid (amg_pcg.hpp, steps B).
+  // On the REMUS coarse system (remus-overset-sst's set-up, a fin turning) 105-109 pressure
+  // iterations a step against 91 without the balance; flexible GMRES preconditioned by a block
+  // factorisation (one cycle per column for the border's responses, session 24) took 96-98, but
+  // its Gram-Schmidt and responses cost about twice the extra iterations (docs/overset-flow.md,
+  // session 25).
+  constexpr int kMaxIterations = 2000;
   if (method != SymmetricMethod::cg_amg)
     throw std::invalid_argument(std::string("LinearSolver::solve_bordered: cg-amg only, got ") +
                                 to_string(method));
@@ -496,12 +495,10 @@ SolveStats LinearSolver::solve_bordered(const Matrix& m, const Border& border, s
     throw std::invalid_argument("LinearSolver::solve_bordered: one lambda per column");
   const Team::Region team(threads());
   auto& I = *impl_;
-  // As solve_symmetric: (-m) x + (-B) lambda = -b, (-B^T) x + (-d) lambda = -rhs, positive
+  // As solve_symmetric: (-m) x + (-C) lambda = -b, (-C^T) x + (-d) lambda = -rhs, positive
   // definite.
   const bool changed = I.load(m, -1.0);
-  const int n = I.csr.rows();
-  const auto nu = static_cast<std::size_t>(n);
-  auto& amg = I.amg_for_csr();
+  const auto nu = static_cast<std::size_t>(I.csr.rows());
   auto& b = I.bordered_b;
   auto& xl = I.bordered_x;
   b.resize(nu + K);
@@ -512,82 +509,9 @@ SolveStats LinearSolver::solve_bordered(const Matrix& m, const Border& border, s
     b[nu + k] = -border.columns[k].rhs;
     xl[nu + k] = lambda[k];
   }
-  // The border's products in column order, serially (a few thousand entries): deterministic.
-  const LinearMap A = [&](std::span<const double> in, std::span<double> out) {
-    I.csr.multiply(in.first(nu), out.first(nu));
-    for (std::size_t k = 0; k < K; ++k) {
-      const auto& col = border.columns[k];
-      double dot = -col.diag * in[nu + k];
-      for (std::size_t e = 0; e < col.rows.size(); ++e) {
-        const auto row = static_cast<std::size_t>(col.rows[e]);
-        out[row] -= col.values[e] * in[nu + k];
-        dot -= col.values[e] * in[row];
-      }
-      out[nu + k] = dot;
-    }
-  };
-  // The preconditioner: the block factorisation of the bordered matrix [A C; C^T E] (in the
-  // positive definite form: C_k = -values at its rows, E_k = -diag_k) with A^-1 replaced by the
-  // multigrid cycle B and the responses A^-1 C_k by R_k = B C_k, one cycle per column and solve:
-  //   t = y_lambda - C^T B y_p;  z_lambda = S^-1 t with S = E - C^T R;  z_p = B y_p - R z_lambda
-  // (C^T B y_p is R^T y_p for a symmetric cycle, and needs C's rows only).
-  // With R exact and B = A^-1 it is the inverse; the block-diagonal one (R = 0) leaves the
-  // border's coupling to the Krylov iteration, which took about 3 more iterations a solve than
-  // the matrix alone on the REMUS coarse system.
-  bool load_coefficients = changed;  // with the first cycle after the matrix changed
-  const auto cycle = [&](std::span<const double> in, std::span<double> out) {
-    amg.precondition(I.csr, load_coefficients, in, out);
-    load_coefficients = false;
-  };
-  auto& C = I.bordered_c;
-  auto& R = I.bordered_r;
-  C.resize(K);
-  R.resize(K);
-  // C_j . v over column j's sparse rows, in order.
-  const auto column_dot = [&](std::size_t j, std::span<const double> v) {
-    const auto& col = border.columns[j];
-    double d = 0;
-    for (std::size_t e = 0; e < col.rows.size(); ++e)
-      d += -col.values[e] * v[static_cast<std::size_t>(col.rows[e])];
-    return d;
-  };
-  const auto Ki = static_cast<Eigen::Index>(K);
-  Eigen::MatrixXd S = Eigen::MatrixXd::Zero(Ki, Ki);
-  for (std::size_t k = 0; k < K; ++k) {
-    const auto& col = border.columns[k];
-    C[k].assign(nu, 0.0);
-    for (std::size_t e = 0; e < col.rows.size(); ++e)
-      C[k][static_cast<std::size_t>(col.rows[e])] = -col.values[e];
-    R[k].assign(nu, 0.0);
-    cycle(C[k], R[k]);
-    S(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(k)) = -col.diag;
-  }
-  for (std::size_t j = 0; j < K; ++j)  // S = E - C^T R
-    for (std::size_t k = 0; k < K; ++k)
-      S(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(k)) -= column_dot(j, R[k]);
-  const Eigen::PartialPivLU<Eigen::MatrixXd> S_lu(S);
-  // A Schur complement that is not positive (an R far from A^-1 C): the block-diagonal form.
-  const bool factored = S.diagonal().minCoeff() > 0 && S_lu.inverse().allFinite();
-  Eigen::VectorXd t(Ki);
-  const LinearMap P = [&](std::span<const double> y, std::span<double> z) {
-    cycle(y.first(nu), z.first(nu));
-    if (!factored) {
-      for (std::size_t k = 0; k < K; ++k) z[nu + k] = y[nu + k] / -border.columns[k].diag;
-      return;
-    }
-    for (std::size_t k = 0; k < K; ++k)  // R^T y_p = C^T B y_p
-      t[static_cast<Eigen::Index>(k)] = y[nu + k] - column_dot(k, z.first(nu));
-    const Eigen::VectorXd z_lambda = S_lu.solve(t);
-    for (std::size_t k = 0; k < K; ++k) z[nu + k] = z_lambda[static_cast<Eigen::Index>(k)];
-    parallel_for(n, [&](int i) {
-      const auto iu = static_cast<std::size_t>(i);
-      for (std::size_t k = 0; k < K; ++k)
-        z[iu] -= R[k][iu] * z_lambda[static_cast<Eigen::Index>(k)];
-    });
-  };
-  const SolveStats stats = fgmres(n + static_cast<int>(K), A, P, b, xl, I.tolerance, kMaxIterations,
-                                  kRestart, I.fgmres_work);
-  std::copy(xl.begin(), xl.begin() + n, x.begin());
+  const SolveStats stats = I.amg_for_csr().solve_bordered(I.csr, changed, border, -1.0, b, xl,
+                                                          I.tolerance, kMaxIterations);
+  std::copy(xl.begin(), xl.begin() + static_cast<std::ptrdiff_t>(nu), x.begin());
   for (std::size_t k = 0; k < K; ++k) lambda[k] = xl[nu + k];
   return stats;
 }

@@ -27,9 +27,9 @@
 // flux is phiHbyA - D_f (grad p)_f . S, whose p_j coefficient is the matrix's: continuity of
 // every active cell is its row). Q_k = 0 is then one more row of the Laplacian: the ring as one
 // cell, off-diagonals a_f to the active cells beside it, diagonal -sum_f a_f. The bordered
-// matrix stays symmetric and negative definite; LinearSolver::solve_bordered solves it with the
-// multigrid of the pressure matrix in a block factorisation, about as many iterations as the
-// plain solve (96 against 91 a step on the REMUS coarse system; 110 with a block-diagonal one):
+// matrix stays symmetric and negative definite; LinearSolver::solve_bordered solves it by cg-amg
+// with the ring as a row of its own on every level of the multigrid (105-109 iterations a step
+// against 91 for the plain solve on the REMUS coarse system):
 //   B1. column k: per active cell i beside the ring of k, the sum of its rows' a_f to the ring;
 //       diag_k = -sum a_f; rhs_k = -Q_k of the probe pressure (the fixed values in the fixed
 //       cells, zero elsewhere), from the flux of the probe (fv::interface_flux);

@@ -144,9 +144,8 @@ class LinearSolver {
   // solves independent of the run's history, so that a restart continues bitwise).
   void plan_coupled(const Matrix& m, const ExtraEntries& extra);
   // Solves the bordered system (Border) for x (n values, the initial guess) and lambda (one per
-  // column, likewise): flexible GMRES preconditioned by the block factorisation of the bordered
-  // matrix with cg-amg's multigrid cycle of m for m^-1 and one cycle per column for the border's
-  // responses (so about as many iterations as m alone). `method` must be cg_amg
+  // column, likewise): cg-amg's flexible CG with the border carried through every level of its
+  // multigrid as rows of their own (never aggregated). `method` must be cg_amg
   // (std::invalid_argument otherwise).
   SolveStats solve_bordered(const Matrix& m, const Border& border, std::span<double> x,
                             std::span<double> lambda, SymmetricMethod method);
