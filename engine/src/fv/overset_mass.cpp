@@ -168,6 +168,7 @@ void Pimple::border_overset_mass(const Matrix& free, bool corrected, Border& bor
   // (row, a_f) per face between an active cell and an open component's fringe cell, by fringe
   // cell and face: a deterministic order, sorted by row below.
   std::vector<std::vector<std::pair<int, double>>> entries(K);
+  std::vector<std::vector<std::pair<int, int>>> ring_faces(K);  // (face, its active cell)
   int last_comp = -1, last_column = -1;
   for (int c : overset_->fringe_cells()) {
     const int comp = overset_->component_of(c);
@@ -185,6 +186,7 @@ void Pimple::border_overset_mass(const Matrix& free, bool corrected, Border& bor
       const double a =
           owner ? free.lower[static_cast<std::size_t>(f)] : free.upper[static_cast<std::size_t>(f)];
       entries[static_cast<std::size_t>(last_column)].emplace_back(i, a);
+      ring_faces[static_cast<std::size_t>(last_column)].emplace_back(f, i);
     }
   }
   for (std::size_t k = 0; k < K; ++k) {
@@ -201,17 +203,27 @@ void Pimple::border_overset_mass(const Matrix& free, bool corrected, Border& bor
       column.diag -= a;
     }
   }
-  // rhs_k = -Q_k(probe)
+  // rhs_k = -Q_k(probe): the probe's flux on the ring's faces only (those between an active cell
+  // and the fringe of an open component; fringe layers keep holes from active cells), summed in
+  // face order as fv::interface_flux sums a whole field's.
   const auto n = static_cast<std::size_t>(mesh_.cells());
   W.probe.assign(n, 0.0);
   const auto fixed = overset_->fixed_cells();
   for (std::size_t i = 0; i < fixed.size(); ++i)
     W.probe[static_cast<std::size_t>(fixed[i])] = fixed_[i];
-  W.probe_flux.resize(phi.size());
-  pressure_flux(W.probe, corrected, W.probe_flux);
-  const auto q = interface_flux(*overset_, mesh_, W.probe_flux);
-  for (std::size_t k = 0; k < K; ++k)
-    border.columns[k].rhs = -q[static_cast<std::size_t>(open_components_[k])];
+  for (std::size_t k = 0; k < K; ++k) {
+    auto& faces = W.probe_flux;
+    faces.clear();
+    for (const auto& [f, i] : ring_faces[k]) {
+      const double flux = overset_->live(f) ? internal_pressure_flux(f, W.probe, corrected) : 0.0;
+      faces.emplace_back(f, mesh_.owner(f) == i ? flux : -flux);
+    }
+    std::sort(faces.begin(), faces.end(),
+              [](const auto& x, const auto& y) { return x.first < y.first; });
+    double q = 0;
+    for (const auto& [f, out] : faces) q += out;
+    border.columns[k].rhs = -q;
+  }
 }
 
 // B2. (after the solve)

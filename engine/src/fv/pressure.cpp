@@ -325,8 +325,8 @@ void Pimple::pressure_flux(std::span<const double> pc, bool corrected,
     double pf;
     double correction = 0;
     if (f < internal) {
-      pf = pc[static_cast<std::size_t>(mesh_.neighbour(f))];
-      if (corrected) correction = mesh_.k(f).dot(interpolate(mesh_, W.gp, f));
+      out[fs] = internal_pressure_flux(f, pc, corrected);
+      return;
     } else {
       const int b = f - internal;
       const auto [ca, cb] = p.value_coeffs(mesh_, b);
@@ -340,6 +340,15 @@ void Pimple::pressure_flux(std::span<const double> pc, bool corrected,
     out[fs] = W.phiHbyA[fs] - W.Df[fs] * (mesh_.alpha(f) * (pf - pc[P]) + correction);
   });
   mask_faces(out);  // overset, step 5
+}
+
+double Pimple::internal_pressure_flux(int f, std::span<const double> pc, bool corrected) const {
+  const auto& W = work_;
+  const auto fs = static_cast<std::size_t>(f);
+  const auto P = static_cast<std::size_t>(mesh_.owner(f));
+  const double pf = pc[static_cast<std::size_t>(mesh_.neighbour(f))];
+  const double correction = corrected ? mesh_.k(f).dot(interpolate(mesh_, W.gp, f)) : 0.0;
+  return W.phiHbyA[fs] - W.Df[fs] * (mesh_.alpha(f) * (pf - pc[P]) + correction);
 }
 
 }  // namespace auvloop::engine::fv

@@ -223,6 +223,9 @@ class Pimple {
   // The face flux phi = phiHbyA - Df (grad p)_f of the pressure cells `pc` (the corrector's
   // phiHbyA, Df and, when `corrected`, its explicit non-orthogonal part), faces masked.
   void pressure_flux(std::span<const double> pc, bool corrected, std::vector<double>& out) const;
+  // The same flux on internal face f alone, before masking.
+  [[nodiscard]] double internal_pressure_flux(int f, std::span<const double> pc,
+                                              bool corrected) const;
   // Overset mass balance (overset_mass.cpp): the fringe-pressure shifts of the open components
   // that make their interface flux zero; `free` the pressure matrix before its rows were fixed.
   void balance_overset_mass(const Matrix& free, bool corrected, StepReport& r);
@@ -272,7 +275,8 @@ class Pimple {
     std::vector<double> p_shift, phi_shift, fixed_shift, offsets;
     // The bordered form (cg-amg): the border, its unknowns (the fringe shifts), a probe pressure.
     Border border;
-    std::vector<double> lambda, probe, probe_flux;
+    std::vector<double> lambda, probe;
+    std::vector<std::pair<int, double>> probe_flux;  // (face, its flux out of the component)
     // The flux-specified ring: its faces' fluxes, per open component their sum.
     std::vector<double> ring_flux, ring_mismatch;
     // Overset re-assembly: the filled cells' values of one sweep, the cells that hold a value,
