@@ -639,6 +639,22 @@ Result run_remus_overset(bool quick, bool sst) {
         "hull drag (per unit density) at t = {:.2f} s: {:.5g} m^4/s^2 (pressure {:.4g}, shear "
         "{:.4g}; {:.2f} N in sea water), 0.2 s before: {:.5g}",
         straight, end, pressure, end - pressure, 1025 * end, before));
+    // Its history (whether the straight run's flow is steady by its end or still moving), and
+    // the range over the last 0.5 s.
+    std::string history;
+    const auto quarter = static_cast<std::size_t>(std::lround(0.25 / kDt));
+    for (std::size_t k = 1; k * quarter <= straight_steps; ++k) {
+      const auto i = k * quarter - 1;
+      history += fmt::format("{}{:.2f} s {:.5g}", history.empty() ? "" : ", ",
+                             static_cast<double>(i + 1) * kDt, r.drag[i]);
+    }
+    const auto last = straight_steps - 2 * quarter;
+    const auto [lo, hi] =
+        std::minmax_element(r.drag.begin() + static_cast<std::ptrdiff_t>(last),
+                            r.drag.begin() + static_cast<std::ptrdiff_t>(straight_steps));
+    res.notes.push_back(fmt::format(
+        "hull drag every 0.25 s of the straight run: {}; over its last 0.5 s {:.5g} to {:.5g}",
+        history, *lo, *hi));
     res.rows.push_back(bound_row("hull drag change over the straight run's last 0.2 s",
                                  std::abs(end / before - 1), 0.01));
   }
