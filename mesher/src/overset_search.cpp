@@ -164,193 +164,238 @@ void nearest_first(const GridData& d, const Eigen::Vector3d& x, std::vector<int>
   if (cells.size() > 16) cells.resize(16);
 }
 
-// Interpolation weights reproducing linear fields: minimise sum w_i^2 / D_i subject to
-// sum w_i = 1 and sum w_i (x_i - x) = 0, D_i = 1 / |x_i - x|^2 (near cells weigh more); m = 4
-// constraints, or 3 in the plane (the z offsets of a planar system are all zero).
-bool linear_weights(const std::vector<Eigen::Vector3d>& xs, const Eigen::Vector3d& x,
-                    std::vector<double>& w, bool planar) {
-  const auto n = static_cast<Eigen::Index>(xs.size());
-  const Eigen::Index m = planar ? 3 : 4;
-  if (n < m) return false;
-  // Offsets in units of the stencil's extent keep the system well scaled; the constraints (and so
-  // the exactness for linear fields) do not depend on that scale or on D.
-  double h = 0;
-  for (const auto& p : xs) h = std::max(h, (p - x).norm());
-  Eigen::MatrixXd A(m, n);
-  Eigen::VectorXd D(n);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const Eigen::Vector3d r = (xs[static_cast<std::size_t>(i)] - x) / h;
-    A(0, i) = 1.0;
-    A.block(1, i, m - 1, 1) = r.head(m - 1);
-    D(i) = 1.0 / (r.squaredNorm() + 1e-3);
-  }
-  // Minimum-norm solution of B v = e1 with B = A D^(1/2), w = D^(1/2) v, through a QR
-  // factorisation of B^T (n x m): v = Q R^-T e1. Unlike the normal equations (A D A^T) y = e1 it
-  // does not square the condition number, which matters for fallback stencils that extrapolate;
-  // two steps of iterative refinement on the constraint residual e1 - A w bring sum w = 1 and
-  // sum w r = 0 back to round-off.
-  const Eigen::VectorXd sqrt_d = D.cwiseSqrt();
-  const Eigen::MatrixXd Bt = (A * sqrt_d.asDiagonal()).transpose();
-  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(Bt);
-  const Eigen::MatrixXd R = qr.matrixQR().topLeftCorner(m, m).triangularView<Eigen::Upper>();
-  const double scale = std::abs(R(0, 0));
-  for (Eigen::Index k = 0; k < m; ++k)
-    if (!(std::abs(R(k, k)) > 1e-8 * scale)) return false;  // centres in a plane (a line)
-  const Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(n, m);
-  const auto solve = [&](const Eigen::VectorXd& rhs) -> Eigen::VectorXd {
-    const Eigen::VectorXd y = R.transpose().triangularView<Eigen::Lower>().solve(rhs);
-    return sqrt_d.asDiagonal() * (Q * y);
-  };
-  const Eigen::VectorXd e1 = Eigen::VectorXd::Unit(m, 0);
-  Eigen::VectorXd wv = solve(e1);
-  for (int step = 0; step < 2; ++step) wv += solve(e1 - A * wv);
-  w.assign(wv.data(), wv.data() + n);
-  return true;
-}
-
+// The dense algebra of step 3 on matrices whose storage holds up to MaxN centres (MaxN ==
+// Eigen::Dynamic: any number, on the heap): a stencil's weights are computed for thousands of
+// receivers an update, and heap-allocated temporaries were a sixth of its time. The arithmetic
+// is the same for any MaxN.
 namespace {
-// Lawson and Hanson's NNLS ("Solving Least Squares Problems", 1974, ch. 23): x >= 0 minimising
-// |E x - f| for a small dense E; the passive set's least-squares solves by complete orthogonal
-// decomposition (minimum norm when it has more columns than E has rows).
-Eigen::VectorXd nnls(const Eigen::MatrixXd& E, const Eigen::VectorXd& f) {
-  const Eigen::Index n = E.cols();
-  Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
-  std::vector<char> passive(static_cast<std::size_t>(n), 0);
-  const double tol = 1e-12 * std::max(1.0, E.cwiseAbs().maxCoeff()) * std::max(1.0, f.norm());
-  for (int outer = 0; outer < 3 * static_cast<int>(n) + 10; ++outer) {
-    const Eigen::VectorXd grad = E.transpose() * (f - E * x);
-    Eigen::Index j = -1;
-    double best = tol;
-    for (Eigen::Index i = 0; i < n; ++i)
-      if (!passive[static_cast<std::size_t>(i)] && grad[i] > best) {
-        best = grad[i];
-        j = i;
-      }
-    if (j < 0) break;
-    passive[static_cast<std::size_t>(j)] = 1;
-    for (int inner = 0; inner <= static_cast<int>(n); ++inner) {
-      std::vector<Eigen::Index> cols;
-      for (Eigen::Index i = 0; i < n; ++i)
-        if (passive[static_cast<std::size_t>(i)]) cols.push_back(i);
-      Eigen::MatrixXd Ep(E.rows(), static_cast<Eigen::Index>(cols.size()));
-      for (std::size_t k = 0; k < cols.size(); ++k)
-        Ep.col(static_cast<Eigen::Index>(k)) = E.col(cols[k]);
-      const Eigen::VectorXd zp = Ep.completeOrthogonalDecomposition().solve(f);
-      Eigen::VectorXd z = Eigen::VectorXd::Zero(n);
-      for (std::size_t k = 0; k < cols.size(); ++k) z[cols[k]] = zp[static_cast<Eigen::Index>(k)];
-      if (zp.minCoeff() > 0) {
-        x = z;
-        break;
-      }
-      double alpha = 1;
-      for (Eigen::Index i : cols)
-        if (z[i] <= 0) alpha = std::min(alpha, x[i] / (x[i] - z[i]));
-      x += alpha * (z - x);
-      for (Eigen::Index i : cols)
-        if (x[i] <= tol) {
-          x[i] = 0;
-          passive[static_cast<std::size_t>(i)] = 0;
-        }
-    }
-  }
-  return x;
-}
-}  // namespace
+constexpr int kStackCentres = 32;  // more centres than this (rare): heap storage
+template <int MaxN>
+struct Dense {
+  using MN = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 4, MaxN>;  // m x n
+  using NM = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, MaxN, 4>;  // n x m
+  using MM = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 4, 4>;
+  using N = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, MaxN, 1>;
+  using M = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 4, 1>;
+  using Flags = Eigen::Matrix<int, Eigen::Dynamic, 1, 0, MaxN, 1>;
+  using Index = Eigen::Index;
 
-double convex_weights(const std::vector<Eigen::Vector3d>& xs, const Eigen::Vector3d& x,
-                      std::vector<double>& w, bool planar) {
-  if (!linear_weights(xs, x, w, planar)) return -1;
-  const auto n = static_cast<Eigen::Index>(xs.size());
-  const Eigen::Index m = planar ? 3 : 4;
-  double h = 0;
-  for (const auto& p : xs) h = std::max(h, (p - x).norm());
-  const auto offset = [&](const std::vector<double>& v) {
-    Eigen::Vector3d o = Eigen::Vector3d::Zero();
-    for (Eigen::Index i = 0; i < n; ++i)
-      o += v[static_cast<std::size_t>(i)] * (xs[static_cast<std::size_t>(i)] - x) / h;
-    if (planar) o.z() = 0;
-    return o.norm();
-  };
-  double negative = 0;
-  for (double v : w) negative += std::max(0.0, -v);
-  if (negative <= kNegativeWeight) return offset(w);  // a.
-  // b. The constraints with the columns scaled by 1 / (|x_i - x| / h): w_i = s_i v_i.
-  Eigen::MatrixXd E(m, n);
-  Eigen::VectorXd scale(n);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const Eigen::Vector3d r = (xs[static_cast<std::size_t>(i)] - x) / h;
-    scale[i] = 1.0 / (r.norm() + 1e-3);
-    E(0, i) = 1.0;
-    E.block(1, i, m - 1, 1) = r.head(m - 1);
-    E.col(i) *= scale[i];
-  }
-  const Eigen::VectorXd e1 = Eigen::VectorXd::Unit(m, 0);
-  Eigen::VectorXd v = nnls(E, e1);
-  std::vector<double> trial(static_cast<std::size_t>(n));
-  for (Eigen::Index i = 0; i < n; ++i) trial[static_cast<std::size_t>(i)] = scale[i] * v[i];
-  double sum = std::accumulate(trial.begin(), trial.end(), 0.0);
-  if (std::abs(sum - 1) < 1e-9 && offset(trial) < 1e-9) {
-    // In the hull: from this feasible point to the weights of least sum w_i^2 / D_i among the
-    // non-negative ones (the minimum-norm solution of a. with the bounds: a primal active-set
-    // method; at each free set F, w_F = D_F A_F^T y / 2 with (A_F D_F A_F^T) y = 2 e1).
-    Eigen::MatrixXd A(m, n);
-    Eigen::VectorXd D(n);
-    for (Eigen::Index i = 0; i < n; ++i) {
+  // The constraint matrix A (m x n: row 0 ones, rows 1.. the offsets in units of the stencil's
+  // extent h) and D_i = 1 / (|r_i|^2 + 1e-3).
+  static double constraints(const std::vector<Eigen::Vector3d>& xs, const Eigen::Vector3d& x,
+                            Index m, MN& A, N& D) {
+    const auto n = static_cast<Index>(xs.size());
+    double h = 0;
+    for (const auto& p : xs) h = std::max(h, (p - x).norm());
+    A.resize(m, n);
+    D.resize(n);
+    for (Index i = 0; i < n; ++i) {
       const Eigen::Vector3d r = (xs[static_cast<std::size_t>(i)] - x) / h;
       A(0, i) = 1.0;
       A.block(1, i, m - 1, 1) = r.head(m - 1);
       D(i) = 1.0 / (r.squaredNorm() + 1e-3);
     }
-    Eigen::VectorXd wv = Eigen::Map<const Eigen::VectorXd>(trial.data(), n);
-    std::vector<char> free(static_cast<std::size_t>(n));
-    for (Eigen::Index i = 0; i < n; ++i) free[static_cast<std::size_t>(i)] = wv[i] > 0 ? 1 : 0;
-    for (int it = 0; it < 4 * static_cast<int>(n) + 10; ++it) {
-      Eigen::MatrixXd N = Eigen::MatrixXd::Zero(m, m);
-      for (Eigen::Index i = 0; i < n; ++i)
-        if (free[static_cast<std::size_t>(i)]) N += D(i) * A.col(i) * A.col(i).transpose();
-      const Eigen::FullPivLU<Eigen::MatrixXd> lu(N);
-      if (!lu.isInvertible()) break;  // the free centres span less than the space: keep w
-      const Eigen::VectorXd y = lu.solve(2 * e1);
-      Eigen::VectorXd z = Eigen::VectorXd::Zero(n);
-      for (Eigen::Index i = 0; i < n; ++i)
-        if (free[static_cast<std::size_t>(i)]) z[i] = 0.5 * D(i) * A.col(i).dot(y);
-      double alpha = 1;
-      Eigen::Index block = -1;
-      for (Eigen::Index i = 0; i < n; ++i)
-        if (free[static_cast<std::size_t>(i)] && z[i] < 0 && wv[i] / (wv[i] - z[i]) < alpha) {
-          alpha = wv[i] / (wv[i] - z[i]);
-          block = i;
-        }
-      wv += alpha * (z - wv);
-      if (block >= 0) {  // a weight reached zero on the way: bound it
-        wv[block] = 0;
-        free[static_cast<std::size_t>(block)] = 0;
-        continue;
-      }
-      // At the free set's optimum: release the bound whose multiplier -(A^T y)_i is most negative.
-      Eigen::Index release = -1;
-      double most = 1e-12;
-      for (Eigen::Index i = 0; i < n; ++i)
-        if (!free[static_cast<std::size_t>(i)] && A.col(i).dot(y) > most) {
-          most = A.col(i).dot(y);
-          release = i;
-        }
-      if (release < 0) break;  // optimal
-      free[static_cast<std::size_t>(release)] = 1;
-    }
-    for (Eigen::Index i = 0; i < n; ++i) trial[static_cast<std::size_t>(i)] = std::max(0.0, wv[i]);
-    w = trial;
-    return offset(w);
+    return h;
   }
-  // c. Beyond the hull: the sum weighted above the offsets, then normalised.
-  E.row(0) *= 1e3;
-  v = nnls(E, 1e3 * e1);
-  for (Eigen::Index i = 0; i < n; ++i) trial[static_cast<std::size_t>(i)] = scale[i] * v[i];
-  sum = std::accumulate(trial.begin(), trial.end(), 0.0);
-  if (!(sum > 0)) return -1;
-  for (double& t : trial) t /= sum;
-  w = trial;
-  return offset(w);
+
+  // Interpolation weights reproducing linear fields: minimise sum w_i^2 / D_i subject to
+  // sum w_i = 1 and sum w_i (x_i - x) = 0, D_i = 1 / |x_i - x|^2 (near cells weigh more); m = 4
+  // constraints, or 3 in the plane (the z offsets of a planar system are all zero).
+  static bool linear(const std::vector<Eigen::Vector3d>& xs, const Eigen::Vector3d& x,
+                     std::vector<double>& w, bool planar) {
+    const auto n = static_cast<Index>(xs.size());
+    const Index m = planar ? 3 : 4;
+    if (n < m) return false;
+    // Offsets in units of the stencil's extent keep the system well scaled; the constraints
+    // (and so the exactness for linear fields) do not depend on that scale or on D.
+    MN A;
+    N D;
+    constraints(xs, x, m, A, D);
+    // Minimum-norm solution of B v = e1 with B = A D^(1/2), w = D^(1/2) v, through a QR
+    // factorisation of B^T (n x m): v = Q R^-T e1. Unlike the normal equations (A D A^T) y = e1
+    // it does not square the condition number, which matters for fallback stencils that
+    // extrapolate; two steps of iterative refinement on the constraint residual e1 - A w bring
+    // sum w = 1 and sum w r = 0 back to round-off.
+    const N sqrt_d = D.cwiseSqrt();
+    const NM Bt = (A * sqrt_d.asDiagonal()).transpose();
+    const Eigen::HouseholderQR<NM> qr(Bt);
+    const MM R = qr.matrixQR().topLeftCorner(m, m).template triangularView<Eigen::Upper>();
+    const double scale = std::abs(R(0, 0));
+    for (Index k = 0; k < m; ++k)
+      if (!(std::abs(R(k, k)) > 1e-8 * scale)) return false;  // centres in a plane (a line)
+    NM Q = NM::Identity(n, m);
+    Q.applyOnTheLeft(qr.householderQ());
+    const auto solve = [&](const M& rhs) -> N {
+      const M y = R.transpose().template triangularView<Eigen::Lower>().solve(rhs);
+      return sqrt_d.asDiagonal() * (Q * y);
+    };
+    const M e1 = M::Unit(m, 0);
+    N wv = solve(e1);
+    for (int step = 0; step < 2; ++step) wv += solve(e1 - A * wv);
+    w.assign(wv.data(), wv.data() + n);
+    return true;
+  }
+
+  // Lawson and Hanson's NNLS ("Solving Least Squares Problems", 1974, ch. 23): x >= 0 minimising
+  // |E x - f| for a small dense E; the passive set's least-squares solves by complete orthogonal
+  // decomposition (minimum norm when it has more columns than E has rows).
+  static N nnls(const MN& E, const M& f) {
+    const Index n = E.cols();
+    N x = N::Zero(n);
+    Flags passive = Flags::Zero(n), cols(n);
+    const double tol = 1e-12 * std::max(1.0, E.cwiseAbs().maxCoeff()) * std::max(1.0, f.norm());
+    MN Ep;
+    N z(n);
+    for (int outer = 0; outer < 3 * static_cast<int>(n) + 10; ++outer) {
+      const N grad = E.transpose() * (f - E * x);
+      Index j = -1;
+      double best = tol;
+      for (Index i = 0; i < n; ++i)
+        if (!passive[i] && grad[i] > best) {
+          best = grad[i];
+          j = i;
+        }
+      if (j < 0) break;
+      passive[j] = 1;
+      for (int inner = 0; inner <= static_cast<int>(n); ++inner) {
+        Index count = 0;
+        for (Index i = 0; i < n; ++i)
+          if (passive[i]) cols[count++] = static_cast<int>(i);
+        Ep.resize(E.rows(), count);
+        for (Index k = 0; k < count; ++k) Ep.col(k) = E.col(cols[k]);
+        const N zp = Ep.completeOrthogonalDecomposition().solve(f);
+        z.setZero();
+        for (Index k = 0; k < count; ++k) z[cols[k]] = zp[k];
+        if (zp.minCoeff() > 0) {
+          x = z;
+          break;
+        }
+        double alpha = 1;
+        for (Index k = 0; k < count; ++k) {
+          const Index i = cols[k];
+          if (z[i] <= 0) alpha = std::min(alpha, x[i] / (x[i] - z[i]));
+        }
+        x += alpha * (z - x);
+        for (Index k = 0; k < count; ++k) {
+          const Index i = cols[k];
+          if (x[i] <= tol) {
+            x[i] = 0;
+            passive[i] = 0;
+          }
+        }
+      }
+    }
+    return x;
+  }
+
+  static double convex(const std::vector<Eigen::Vector3d>& xs, const Eigen::Vector3d& x,
+                       std::vector<double>& w, bool planar) {
+    if (!linear(xs, x, w, planar)) return -1;
+    const auto n = static_cast<Index>(xs.size());
+    const Index m = planar ? 3 : 4;
+    double h = 0;
+    for (const auto& p : xs) h = std::max(h, (p - x).norm());
+    const auto offset = [&](const double* v) {  // n weights
+      Eigen::Vector3d o = Eigen::Vector3d::Zero();
+      for (Index i = 0; i < n; ++i) o += v[i] * (xs[static_cast<std::size_t>(i)] - x) / h;
+      if (planar) o.z() = 0;
+      return o.norm();
+    };
+    double negative = 0;
+    for (double v : w) negative += std::max(0.0, -v);
+    if (negative <= kNegativeWeight) return offset(w.data());  // a.
+    // b. The constraints with the columns scaled by 1 / (|x_i - x| / h): w_i = s_i v_i.
+    MN E(m, n);
+    N scale(n);
+    for (Index i = 0; i < n; ++i) {
+      const Eigen::Vector3d r = (xs[static_cast<std::size_t>(i)] - x) / h;
+      scale[i] = 1.0 / (r.norm() + 1e-3);
+      E(0, i) = 1.0;
+      E.block(1, i, m - 1, 1) = r.head(m - 1);
+      E.col(i) *= scale[i];
+    }
+    const M e1 = M::Unit(m, 0);
+    N v = nnls(E, e1);
+    N trial(n);
+    for (Index i = 0; i < n; ++i) trial[i] = scale[i] * v[i];
+    double sum = 0;
+    for (Index i = 0; i < n; ++i) sum += trial[i];
+    const auto give = [&] {
+      w.assign(trial.data(), trial.data() + n);
+      return offset(w.data());
+    };
+    if (std::abs(sum - 1) < 1e-9 && offset(trial.data()) < 1e-9) {
+      // In the hull: from this feasible point to the weights of least sum w_i^2 / D_i among the
+      // non-negative ones (the minimum-norm solution of a. with the bounds: a primal active-set
+      // method; at each free set F, w_F = D_F A_F^T y / 2 with (A_F D_F A_F^T) y = 2 e1).
+      MN A;
+      N D;
+      constraints(xs, x, m, A, D);
+      N wv = trial;
+      Flags free(n);
+      for (Index i = 0; i < n; ++i) free[i] = wv[i] > 0 ? 1 : 0;
+      N z(n);
+      for (int it = 0; it < 4 * static_cast<int>(n) + 10; ++it) {
+        MM Nm = MM::Zero(m, m);
+        for (Index i = 0; i < n; ++i)
+          if (free[i]) Nm += D(i) * A.col(i) * A.col(i).transpose();
+        const Eigen::FullPivLU<MM> lu(Nm);
+        if (!lu.isInvertible()) break;  // the free centres span less than the space: keep w
+        const M y = lu.solve(2 * e1);
+        z.setZero();
+        for (Index i = 0; i < n; ++i)
+          if (free[i]) z[i] = 0.5 * D(i) * A.col(i).dot(y);
+        double alpha = 1;
+        Index block = -1;
+        for (Index i = 0; i < n; ++i)
+          if (free[i] && z[i] < 0 && wv[i] / (wv[i] - z[i]) < alpha) {
+            alpha = wv[i] / (wv[i] - z[i]);
+            block = i;
+          }
+        wv += alpha * (z - wv);
+        if (block >= 0) {  // a weight reached zero on the way: bound it
+          wv[block] = 0;
+          free[block] = 0;
+          continue;
+        }
+        // At the free set's optimum: release the bound whose multiplier -(A^T y)_i is most
+        // negative.
+        Index release = -1;
+        double most = 1e-12;
+        for (Index i = 0; i < n; ++i)
+          if (!free[i] && A.col(i).dot(y) > most) {
+            most = A.col(i).dot(y);
+            release = i;
+          }
+        if (release < 0) break;  // optimal
+        free[release] = 1;
+      }
+      for (Index i = 0; i < n; ++i) trial[i] = std::max(0.0, wv[i]);
+      return give();
+    }
+    // c. Beyond the hull: the sum weighted above the offsets, then normalised.
+    E.row(0) *= 1e3;
+    v = nnls(E, 1e3 * e1);
+    for (Index i = 0; i < n; ++i) trial[i] = scale[i] * v[i];
+    sum = 0;
+    for (Index i = 0; i < n; ++i) sum += trial[i];
+    if (!(sum > 0)) return -1;
+    for (Index i = 0; i < n; ++i) trial[i] /= sum;
+    return give();
+  }
+};
+}  // namespace
+
+bool linear_weights(const std::vector<Eigen::Vector3d>& xs, const Eigen::Vector3d& x,
+                    std::vector<double>& w, bool planar) {
+  return xs.size() <= kStackCentres ? Dense<kStackCentres>::linear(xs, x, w, planar)
+                                    : Dense<Eigen::Dynamic>::linear(xs, x, w, planar);
+}
+
+double convex_weights(const std::vector<Eigen::Vector3d>& xs, const Eigen::Vector3d& x,
+                      std::vector<double>& w, bool planar) {
+  return xs.size() <= kStackCentres ? Dense<kStackCentres>::convex(xs, x, w, planar)
+                                    : Dense<Eigen::Dynamic>::convex(xs, x, w, planar);
 }
 
 }  // namespace auvloop::mesher::overset_detail
