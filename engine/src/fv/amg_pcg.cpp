@@ -318,6 +318,7 @@ struct AmgPcg::Hierarchy {
 
   // B2: lambda_k = (g_k - C_k . x) / E_k on level l (x, b: n_l + K values).
   void relax_border(std::size_t l, std::span<const double> b, std::span<double> x) const {
+    if (K == 0) return;
     const auto n = static_cast<std::size_t>(levels[l].A->rows());
     const auto& B = border[l];
     for (std::size_t k = 0; k < K; ++k) {
