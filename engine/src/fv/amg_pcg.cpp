@@ -198,6 +198,12 @@ struct AmgPcg::Hierarchy {
   Eigen::LLT<Eigen::MatrixXd> coarsest_bordered;
   std::vector<double> border_sum;  // B1's scratch: one value per row of level 1
   std::vector<char> border_seen;
+  // The border the levels hold (B1 is skipped when a solve brings the same one with the same
+  // coefficients); `border_loaded` false after new coefficients or a plain solve.
+  Border loaded;
+  double loaded_sign = 0;
+  bool border_loaded = false;
+  std::vector<double> saved_b;  // B2's values of b at the border's rows
 
   Hierarchy(const BlockCsr& A, bool is_symmetric) : symmetric(is_symmetric) {
     levels.reserve(kMaxLevels);  // no reallocation: the levels' matrix pointers stay valid
@@ -241,6 +247,7 @@ struct AmgPcg::Hierarchy {
   // B1: the border on every level (sign * the caller's values), and the coarsest bordered factor
   // (after load_coefficients, from coarsest_dense).
   void set_border(const Border& given, double sign) {
+    if (border_loaded && sign == loaded_sign && same_border(given)) return;
     if (given.columns.size() != K) {
       K = given.columns.size();
       size_vectors();
@@ -307,10 +314,30 @@ struct AmgPcg::Hierarchy {
     if (coarsest_bordered.info() != Eigen::Success)
       throw std::runtime_error("AMG: the coarsest bordered matrix is not positive definite");
     coarsest_x.resize(nc + Ki);
+    loaded.columns.resize(K);
+    for (std::size_t k = 0; k < K; ++k) {
+      const auto& col = given.columns[k];
+      loaded.columns[k].rows.assign(col.rows.begin(), col.rows.end());
+      loaded.columns[k].values.assign(col.values.begin(), col.values.end());
+      loaded.columns[k].diag = col.diag;
+    }
+    loaded_sign = sign;
+    border_loaded = true;
+  }
+
+  // The columns' rows, values and diagonals as loaded (the right side g does not enter B1).
+  [[nodiscard]] bool same_border(const Border& given) const {
+    if (given.columns.size() != loaded.columns.size()) return false;
+    for (std::size_t k = 0; k < K; ++k) {
+      const auto &a = given.columns[k], &b = loaded.columns[k];
+      if (a.diag != b.diag || a.rows != b.rows || a.values != b.values) return false;
+    }
+    return true;
   }
 
   void clear_border() {
     if (K == 0) return;
+    border_loaded = false;
     K = 0;
     size_vectors();
     coarsest_x.resize(levels.back().A->rows());
@@ -373,6 +400,7 @@ struct AmgPcg::Hierarchy {
         throw std::runtime_error("AMG: the coarsest matrix is not positive definite");
     }
     coarsest_x.resize(C.rows());
+    border_loaded = false;
   }
 
   // Approximately solves levels[l].A x = b, from x = 0 (step 3 of the header).
@@ -433,15 +461,25 @@ struct AmgPcg::Hierarchy {
     }
     for (std::size_t k = 0; k < K; ++k) x[n + k] += C.x[nc + k];
     relax_border(l, b, x);
-    // The rows' sweep with b - C lambda (L.r is free once restricted).
-    parallel_for(
-        A.rows(), [&](int i) { L.r[static_cast<std::size_t>(i)] = b[static_cast<std::size_t>(i)]; },
-        kVectorGrain);
+    // B2 backward: the rows' sweep with b - C lambda, b shifted in place at the columns' rows and
+    // restored bit for bit (in reverse, for a row two columns share). With a border, b is always
+    // one of the hierarchy's own vectors (the finest r, a level's b or r1), never the caller's.
+    if (b.data() != (l == 0 ? r.data() : L.b.data()) && b.data() != L.r1.data())
+      throw std::logic_error("AMG: a bordered cycle on a vector the hierarchy does not own");
+    const std::span<double> shifted(const_cast<double*>(b.data()), b.size());
     const auto& B = border[l];
+    saved_b.clear();
     for (std::size_t k = 0; k < K; ++k)
-      for (std::size_t e = 0; e < B.rows[k].size(); ++e)
-        L.r[static_cast<std::size_t>(B.rows[k][e])] -= B.values[k][e] * x[n + k];
-    A.sweep<true>(std::span<const double>(L.r).first(n), x.first(n), true, false, L.scratch);
+      for (std::size_t e = 0; e < B.rows[k].size(); ++e) {
+        double& v = shifted[static_cast<std::size_t>(B.rows[k][e])];
+        saved_b.push_back(v);
+        v -= B.values[k][e] * x[n + k];
+      }
+    A.sweep<true>(b.first(n), x.first(n), true, false, L.scratch);
+    auto saved = saved_b.end();
+    for (std::size_t k = K; k-- > 0;)
+      for (std::size_t e = B.rows[k].size(); e-- > 0;)
+        shifted[static_cast<std::size_t>(B.rows[k][e])] = *--saved;
   }
 
   // r_p -= C lambda at the columns' rows, r_lambda = g - C^T x_p - E lambda (r_p holds b - A x).
@@ -609,34 +647,11 @@ SolveStats AmgPcg::solve_bordered(const BlockCsr& A, bool changed, const Border&
   prepare(A, changed);
   auto& H = *h_;
   H.set_border(border, sign);
-  // The start as fgmres.cpp's, on the bordered matrix: r = b - A x and OpenFOAM's normalisation
-  // sum |A x - A xbar| + |b - A xbar| over the n + K values (A xbar = xbar A 1).
-  const int n = static_cast<int>(N);
-  const double xbar = parallel_sum<1>(n,
-                                      [&](int lo, int hi, std::array<double, 1>& s) {
-                                        for (int i = lo; i < hi; ++i)
-                                          s[0] += x[static_cast<std::size_t>(i)];
-                                      })[0] /
-                      std::max(n, 1);
-  H.multiply_dot<false>(0, x, H.q);  // A x
-  parallel_for(n, [&](int i) { H.z[static_cast<std::size_t>(i)] = 1.0; });
-  H.multiply_dot<false>(0, H.z, H.p);  // A 1
-  const auto s = parallel_sum<4>(n, [&](int lo, int hi, std::array<double, 4>& sum) {
-    for (int i = lo; i < hi; ++i) {
-      const auto c = static_cast<std::size_t>(i);
-      const double axbar = xbar * H.p[c];
-      H.r[c] = b[c] - H.q[c];
-      sum[0] += std::abs(H.r[c]);
-      sum[1] += H.r[c] * H.r[c];
-      sum[2] += b[c] * b[c];
-      sum[3] += std::abs(H.q[c] - axbar) + std::abs(b[c] - axbar);
-    }
-  });
-  SolveStart start;
-  start.normalisation = s[3] + 1e-300;
-  start.stats.initial_residual = start.stats.final_residual = s[0] / start.normalisation;
-  start.bnorm = std::max(std::sqrt(s[2]), 1e-300);
-  start.rnorm = std::sqrt(s[1]);
+  // The start on the bordered matrix (n + K values).
+  const LinearMap bordered = [&H](std::span<const double> v, std::span<double> Av) {
+    H.multiply_dot<false>(0, v, Av);
+  };
+  const auto start = start_solve(static_cast<int>(N), bordered, b, x, H.r, H.q, H.z);
   return fcg(start, x, tolerance, max_iterations);
 }
 

@@ -30,9 +30,11 @@
 //       matrix of level l+1 is the bordered P^T A_l P;
 //   B2. the smoother on level l: the row sweep (step 3), then per k the Gauss-Seidel update
 //       lambda_k = (g_k - C_k . x) / E_k; the backward sweep in the reverse order (lambda first,
-//       then the rows with b - C lambda): a symmetric smoother;
+//       then the rows with b - C lambda, b shifted at the columns' rows and restored after):
+//       a symmetric smoother;
 //   B3. the coarsest level's dense Cholesky factor of the bordered matrix; the K-cycle's and the
-//       outer CG's products and dot products over the n + K values.
+//       outer CG's products and dot products over the n + K values. B1 and B3's factor are
+//       redone only when the coefficients or the columns change.
 // Without a border every step is the plain one, bit for bit.
 // The cycle (steps 3) reads every level's coefficients in single precision (BlockCsr::keep_single:
 // 8 instead of 12 bytes per entry, a third less memory traffic in the smoother and restriction,

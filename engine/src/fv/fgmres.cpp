@@ -42,32 +42,12 @@ SolveStats fgmres(int n, const LinearMap& A, const LinearMap& precondition,
                   int max_iterations, int restart, FgmresWork& W) {
   W.resize(n, restart);
   const auto m = static_cast<std::size_t>(restart);
-  // 1. The start: r = b - A x and OpenFOAM's normalisation sum |A x - A xbar| + |b - A xbar|,
-  // A xbar = xbar A 1.
-  A(x, W.w);
-  const double xbar = parallel_sum<1>(n,
-                                      [&](int lo, int hi, std::array<double, 1>& s) {
-                                        for (int i = lo; i < hi; ++i)
-                                          s[0] += x[static_cast<std::size_t>(i)];
-                                      })[0] /
-                      std::max(n, 1);
-  parallel_for(n, [&](int i) { W.ones[static_cast<std::size_t>(i)] = 1.0; });
-  A(W.ones, W.r);  // scratch: A 1
-  const auto [normalisation, b_squared] =
-      parallel_sum<2>(n, [&](int lo, int hi, std::array<double, 2>& s) {
-        for (int i = lo; i < hi; ++i) {
-          const auto k = static_cast<std::size_t>(i);
-          const double axbar = xbar * W.r[k];
-          s[0] += std::abs(W.w[k] - axbar) + std::abs(b[k] - axbar);
-          s[1] += b[k] * b[k];
-        }
-      });
-  const double norm = normalisation + 1e-300, bnorm = std::max(std::sqrt(b_squared), 1e-300);
-  auto norms = residual(n, b, W.w, W.r);
-  double l1 = norms[0];
-  SolveStats stats;
-  stats.initial_residual = stats.final_residual = l1 / norm;
-  double rnorm = std::sqrt(norms[1]);
+  // 1. The start: r = b - A x and OpenFOAM's normalisation (krylov.hpp).
+  const auto start = start_solve(n, A, b, x, W.r, W.w, W.ones);
+  const double norm = start.normalisation, bnorm = start.bnorm;
+  SolveStats stats = start.stats;
+  double rnorm = start.rnorm;
+  double l1 = stats.initial_residual * norm;
   std::vector<double> H((m + 1) * m), cs(m), sn(m), g(m + 1), y(m);
   const auto h = [&](std::size_t i, std::size_t j) -> double& { return H[j * (m + 1) + i]; };
   while (!tolerance.met(rnorm, bnorm, stats.final_residual)) {
@@ -136,7 +116,7 @@ SolveStats fgmres(int n, const LinearMap& A, const LinearMap& precondition,
       x[s] += dx;
     });
     A(x, W.w);
-    norms = residual(n, b, W.w, W.r);
+    const auto norms = residual(n, b, W.w, W.r);
     l1 = norms[0];
     rnorm = std::sqrt(norms[1]);
     stats.final_residual = l1 / norm;

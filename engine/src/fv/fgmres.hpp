@@ -18,16 +18,13 @@
 // depend on the number of threads. Work vectors are kept between solves.
 #pragma once
 
-#include <functional>
 #include <span>
 #include <vector>
 
 #include "auvloop/engine/fv/linear_solver.hpp"
+#include "krylov.hpp"
 
 namespace auvloop::engine::fv {
-
-// y = A x (or z = P r): a linear map on vectors of the system's size.
-using LinearMap = std::function<void(std::span<const double>, std::span<double>)>;
 
 struct FgmresWork {
   std::vector<std::vector<double>> V, Z;  // the Krylov basis, its preconditioned vectors

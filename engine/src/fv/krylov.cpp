@@ -52,6 +52,37 @@ SolveStart start_solve(const BlockCsr& A, std::span<const double> b, std::span<c
   return s;
 }
 
+SolveStart start_solve(int n, const LinearMap& A, std::span<const double> b,
+                       std::span<const double> x, std::span<double> r, std::span<double> Ax,
+                       std::span<double> ones) {
+  A(x, Ax);
+  const double xbar = parallel_sum<1>(n,
+                                      [&](int lo, int hi, std::array<double, 1>& s) {
+                                        for (int i = lo; i < hi; ++i)
+                                          s[0] += x[static_cast<std::size_t>(i)];
+                                      })[0] /
+                      std::max(n, 1);
+  parallel_for(n, [&](int i) { ones[static_cast<std::size_t>(i)] = 1.0; });
+  A(ones, r);  // r holds A 1 until the pass below overwrites it with the residual
+  const auto s = parallel_sum<4>(n, [&](int lo, int hi, std::array<double, 4>& sum) {
+    for (int i = lo; i < hi; ++i) {
+      const auto c = static_cast<std::size_t>(i);
+      const double axbar = xbar * r[c];
+      r[c] = b[c] - Ax[c];
+      sum[0] += std::abs(r[c]);
+      sum[1] += r[c] * r[c];
+      sum[2] += b[c] * b[c];
+      sum[3] += std::abs(Ax[c] - axbar) + std::abs(b[c] - axbar);
+    }
+  });
+  SolveStart start;
+  start.normalisation = s[3] + 1e-300;
+  start.stats.initial_residual = start.stats.final_residual = s[0] / start.normalisation;
+  start.bnorm = std::max(std::sqrt(s[2]), 1e-300);
+  start.rnorm = std::sqrt(s[1]);
+  return start;
+}
+
 namespace {
 [[noreturn]] void fail(const char* method, int iterations, double relative, double normalised,
                        const Tolerance& tolerance) {

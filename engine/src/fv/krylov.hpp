@@ -18,6 +18,7 @@
 //                       definite A).
 #pragma once
 
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -44,6 +45,16 @@ struct SolveStart {
 };
 SolveStart start_solve(const BlockCsr& A, std::span<const double> b, std::span<const double> x,
                        std::span<double> r, double normalisation = 0);
+
+// y = A x (or z = P r): a linear map on vectors of the system's size n.
+using LinearMap = std::function<void(std::span<const double>, std::span<double>)>;
+
+// The same start for a matrix known only as a product (FGMRES's coupled systems, a bordered
+// matrix): r = b - A x and OpenFOAM's normalisation sum |A x - A xbar| + |b - A xbar| with
+// A xbar = xbar A 1. `Ax` and `ones` are scratch vectors of size n.
+SolveStart start_solve(int n, const LinearMap& A, std::span<const double> b,
+                       std::span<const double> x, std::span<double> r, std::span<double> Ax,
+                       std::span<double> ones);
 
 struct SmootherResult {
   SolveStats stats;

@@ -167,8 +167,14 @@ void Pimple::border_overset_mass(const Matrix& free, bool corrected, Border& bor
   const int internal = mesh_.internal_faces();
   // (row, a_f) per face between an active cell and an open component's fringe cell, by fringe
   // cell and face: a deterministic order, sorted by row below.
-  std::vector<std::vector<std::pair<int, double>>> entries(K);
-  std::vector<std::vector<std::pair<int, int>>> ring_faces(K);  // (face, its active cell)
+  auto& entries = W.border_entries;
+  auto& ring_faces = W.ring_faces;  // (face, its active cell)
+  entries.resize(K);
+  ring_faces.resize(K);
+  for (std::size_t k = 0; k < K; ++k) {
+    entries[k].clear();
+    ring_faces[k].clear();
+  }
   int last_comp = -1, last_column = -1;
   for (int c : overset_->fringe_cells()) {
     const int comp = overset_->component_of(c);
@@ -207,7 +213,7 @@ void Pimple::border_overset_mass(const Matrix& free, bool corrected, Border& bor
   // and the fringe of an open component; fringe layers keep holes from active cells), summed in
   // face order as fv::interface_flux sums a whole field's.
   const auto n = static_cast<std::size_t>(mesh_.cells());
-  W.probe.assign(n, 0.0);
+  if (W.probe.size() != n) W.probe.assign(n, 0.0);
   const auto fixed = overset_->fixed_cells();
   for (std::size_t i = 0; i < fixed.size(); ++i)
     W.probe[static_cast<std::size_t>(fixed[i])] = fixed_[i];
@@ -224,6 +230,7 @@ void Pimple::border_overset_mass(const Matrix& free, bool corrected, Border& bor
     for (const auto& [f, out] : faces) q += out;
     border.columns[k].rhs = -q;
   }
+  for (int c : fixed) W.probe[static_cast<std::size_t>(c)] = 0.0;  // zero again for the next call
 }
 
 // B2. (after the solve)

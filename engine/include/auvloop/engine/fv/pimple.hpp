@@ -273,10 +273,14 @@ class Pimple {
     // flux, the shifted fixed values.
     Matrix p_free, p_shifted;
     std::vector<double> p_shift, phi_shift, fixed_shift, offsets;
-    // The bordered form (cg-amg): the border, its unknowns (the fringe shifts), a probe pressure.
+    // The bordered form (cg-amg): the border, its unknowns (the fringe shifts), a probe pressure
+    // (zero outside border_overset_mass), per column its (row, a_f) entries and its ring's
+    // (face, active cell) pairs.
     Border border;
     std::vector<double> lambda, probe;
     std::vector<std::pair<int, double>> probe_flux;  // (face, its flux out of the component)
+    std::vector<std::vector<std::pair<int, double>>> border_entries;
+    std::vector<std::vector<std::pair<int, int>>> ring_faces;
     // The flux-specified ring: its faces' fluxes, per open component their sum.
     std::vector<double> ring_flux, ring_mismatch;
     // Overset re-assembly: the filled cells' values of one sweep, the cells that hold a value,
