@@ -26,7 +26,6 @@
 
 namespace auvloop::mesher {
 
-using overset_detail::beyond;
 using overset_detail::Box;
 using overset_detail::convex_weights;
 using overset_detail::GridData;
@@ -144,8 +143,24 @@ struct OversetAssembler::Impl {
     return s;
   }
   [[nodiscard]] int last_found(int h) const { return local().found[static_cast<std::size_t>(h)]; }
-  void remember(int h, int loc) const {
-    if (loc >= 0) local().found[static_cast<std::size_t>(h)] = loc;
+  // A stamp no cell of grid h carries yet in this thread's marks (all cleared when the counter
+  // would overflow: a long run stamps some hundred thousand times a step).
+  static int next_stamp(Scratch& own, std::size_t h) {
+    if (own.stamps[h] == std::numeric_limits<int>::max()) {
+      std::fill(own.marks[h].begin(), own.marks[h].end(), 0);
+      own.stamps[h] = 0;
+    }
+    return ++own.stamps[h];
+  }
+  // The cell of grid h containing xl (h's frame) by locate_cell from `seed`, its walks sharing the
+  // thread's marks (a stamp of their own); remembered as the next seed.
+  int find_cell(int h, const Eigen::Vector3d& xl, int seed) const {
+    Scratch& own = local();
+    const auto hu = static_cast<std::size_t>(h);
+    const overset_detail::WalkMarks marks{own.marks[hu], next_stamp(own, hu)};
+    const int loc = locate_cell(grids[hu], xl, seed, marks);
+    if (loc >= 0) own.found[hu] = loc;
+    return loc;
   }
   // A walk ends in the cell containing its point, but a point on a face between two cells may end
   // in either, depending on the seed: the seeds are forgotten at the start of every block of
@@ -309,8 +324,8 @@ struct OversetAssembler::Impl {
         if (!boxes[k].contains(x)) continue;
         const auto hu = static_cast<std::size_t>(others[k]);
         const auto& hd = grids[hu];
-        const int loc = locate_cell(hd, hd.grid->placement.inverse() * x, last_found(others[k]));
-        remember(others[k], loc);
+        const int loc =
+            find_cell(others[k], hd.grid->placement.inverse() * x, last_found(others[k]));
         if (loc < 0) continue;
         const auto lu = static_cast<std::size_t>(loc);
         if (wall_hole[hu][lu] || depth[hu][lu] < cover_depth(settings, d.size[cu], hd.radius[lu]))
@@ -420,7 +435,7 @@ struct OversetAssembler::Impl {
     // Cells reached are stamped (mark[cell] == stamp) instead of searched for in a list.
     Scratch& own = local();
     auto& mark = own.marks[static_cast<std::size_t>(h)];
-    const int stamp = ++own.stamps[static_cast<std::size_t>(h)];
+    const int stamp = next_stamp(own, static_cast<std::size_t>(h));
     std::vector<int> reached{loc};
     mark[static_cast<std::size_t>(loc)] = stamp;
     // The weights are non-negative (convex_weights: no value beyond its donors', so that no
@@ -503,8 +518,7 @@ struct OversetAssembler::Impl {
       const auto& hd = grids[static_cast<std::size_t>(h)];
       const auto& hs = a.grids[static_cast<std::size_t>(h)].status;
       const Eigen::Vector3d xl = hd.grid->placement.inverse() * x;
-      int loc = locate_cell(hd, xl, h == seed_grid ? seed_cell : last_found(h));
-      remember(h, loc);
+      int loc = find_cell(h, xl, h == seed_grid ? seed_cell : last_found(h));
       if (loc >= 0 && hs[static_cast<std::size_t>(loc)] == CellStatus::active &&
           stencil_in(h, xl, loc, true, hs, cells_out, w_out)) {
         donor_grid = h;
@@ -864,8 +878,7 @@ struct OversetAssembler::Impl {
       const auto& hd = grids[hu];
       const auto& ha = a.grids[hu];
       const Eigen::Vector3d xl = hd.grid->placement.inverse() * x;
-      const int loc = locate_cell(hd, xl, last_found(h));
-      remember(h, loc);
+      const int loc = find_cell(h, xl, last_found(h));
       std::vector<int> cells;
       std::vector<double> w;
       if (loc < 0 || !usable[hu][static_cast<std::size_t>(loc)] ||
@@ -1036,8 +1049,7 @@ struct OversetAssembler::Impl {
       if (h == dg && !fallback) break;
       if (h == g) continue;
       const auto& od = grids[static_cast<std::size_t>(h)];
-      const int loc = locate_cell(od, od.grid->placement.inverse() * x, last_found(h));
-      remember(h, loc);
+      const int loc = find_cell(h, od.grid->placement.inverse() * x, last_found(h));
       if (loc >= 0 && a.grids[static_cast<std::size_t>(h)].status[static_cast<std::size_t>(loc)] ==
                           CellStatus::active)
         return true;

@@ -38,6 +38,14 @@ GridData prepare(const Grid& g, int priority, int fin, int solid, bool planar) {
       d.cell_faces[static_cast<std::size_t>(fill[n]++)] = f;
     }
   }
+  d.planes.resize(d.cell_faces.size());
+  for (std::size_t c = 0; c < nc; ++c)
+    for (int k = d.cell_face_offsets[c]; k < d.cell_face_offsets[c + 1]; ++k) {
+      const auto f = static_cast<std::size_t>(d.cell_faces[static_cast<std::size_t>(k)]);
+      const double sign = g.owner[f] == static_cast<int>(c) ? 1.0 : -1.0;
+      const Eigen::Vector3d n = sign * d.geo.face_area[f] / d.geo.face_area[f].norm();
+      d.planes[static_cast<std::size_t>(k)] << n, n.dot(d.geo.face_centre[f]);
+    }
   d.outer.assign(nc, 0);
   for (const auto& p : g.patches)
     if (p.type == PatchType::overset)
@@ -76,36 +84,36 @@ GridData prepare(const Grid& g, int priority, int fin, int solid, bool planar) {
   return d;
 }
 
-// Signed distance of x beyond the face plane, along the cell's outward normal.
-double beyond(const GridData& d, int face, int cell, const Eigen::Vector3d& x) {
-  const auto f = static_cast<std::size_t>(face);
-  const Eigen::Vector3d& S = d.geo.face_area[f];
-  const double sign = d.grid->owner[f] == cell ? 1.0 : -1.0;
-  return sign * S.dot(x - d.geo.face_centre[f]) / S.norm();
-}
-
 // How far x lies outside a cell: the largest distance beyond any of its face planes (<= 0 inside).
 double violation(const GridData& d, int cell, const Eigen::Vector3d& x) {
   double worst = -kInf;
-  d.each_face(cell, [&](int f) { worst = std::max(worst, beyond(d, f, cell, x)); });
+  const auto c = static_cast<std::size_t>(cell);
+  for (int k = d.cell_face_offsets[c]; k < d.cell_face_offsets[c + 1]; ++k)
+    worst = std::max(worst, d.beyond(k, x));
   return worst;
 }
 
 // A walk from cell c towards x across the face x lies furthest beyond: the cell containing x, or
-// -1 when the walk leaves the grid or circles among warped cells.
-int walk(const GridData& d, const Eigen::Vector3d& x, int c) {
+// -1 when the walk leaves the grid, circles among warped cells or joins a marked path.
+int walk(const GridData& d, const Eigen::Vector3d& x, int c, const WalkMarks& marks) {
+  const bool marking = !marks.mark.empty();
   for (int step = 0; step < 200 && c >= 0; ++step) {
-    int best_face = -1;
-    double best = 1e-12 * d.size[static_cast<std::size_t>(c)];
-    d.each_face(c, [&](int f) {
-      const double s = beyond(d, f, c, x);
+    const auto cs = static_cast<std::size_t>(c);
+    if (marking) {
+      if (marks.mark[cs] == marks.stamp) return -1;
+      marks.mark[cs] = marks.stamp;
+    }
+    int best_k = -1;
+    double best = 1e-12 * d.size[cs];
+    for (int k = d.cell_face_offsets[cs]; k < d.cell_face_offsets[cs + 1]; ++k) {
+      const double s = d.beyond(k, x);
       if (s > best) {
         best = s;
-        best_face = f;
+        best_k = k;
       }
-    });
-    if (best_face < 0) return c;
-    c = d.other(best_face, c);
+    }
+    if (best_k < 0) return c;
+    c = d.other(d.cell_faces[static_cast<std::size_t>(best_k)], c);
   }
   return -1;
 }
@@ -115,23 +123,23 @@ int walk(const GridData& d, const Eigen::Vector3d& x, int c) {
 // round a body is not convex: a walk from a distant seed can run into the wall), or circle among
 // warped cells, or stop in the gap their face planes leave; then walks from the 16 nearest cells,
 // and last those cells by their face planes. -1: x is in no cell.
-int locate_cell(const GridData& d, const Eigen::Vector3d& x, int seed) {
+int locate_cell(const GridData& d, const Eigen::Vector3d& x, int seed, WalkMarks marks) {
   if (!d.local_box.contains(x)) return -1;
   const KPoint q(x.x(), x.y(), x.z());
   if (seed >= 0) {
-    const int c = walk(d, x, seed);
+    const int c = walk(d, x, seed, marks);
     if (c >= 0) return c;
   }
   {
     KSearch search(*d.tree, q, 1);
-    const int c = walk(d, x, boost::get<1>(search.begin()->first));
+    const int c = walk(d, x, boost::get<1>(search.begin()->first), marks);
     if (c >= 0) return c;
   }
   KSearch search(*d.tree, q, 16);
   bool first = true;                // the nearest cell's walk has just failed
   for (const auto& hit : search) {  // walks from the nearest cells: warped cells leave gaps
     if (std::exchange(first, false)) continue;
-    const int c = walk(d, x, boost::get<1>(hit.first));
+    const int c = walk(d, x, boost::get<1>(hit.first), marks);
     if (c >= 0) return c;
   }
   int best_cell = -1;

@@ -14,6 +14,7 @@
 
 #include <limits>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include <CGAL/Orthogonal_k_neighbor_search.h>
@@ -56,6 +57,10 @@ struct GridData {
   const Grid* grid = nullptr;
   GridGeometry geo;
   std::vector<int> cell_face_offsets, cell_faces;
+  // Per cell_faces entry: the face's plane as seen from that cell, {outward unit normal, its
+  // offset n . face centre}, next to the cell's other faces (a walk step reads one cell's planes
+  // from consecutive memory).
+  std::vector<Eigen::Vector4d> planes;
   std::vector<double> size;  // cube root of the cell volume (3D), sqrt(volume / thickness) (planar)
   std::vector<char> outer;   // owns a face of an overset patch
   std::vector<int> ids;
@@ -72,6 +77,11 @@ struct GridData {
     const auto f = static_cast<std::size_t>(face);
     if (face >= grid->internal_faces()) return -1;
     return grid->owner[f] == cell ? grid->neighbour[f] : grid->owner[f];
+  }
+  // Signed distance of x beyond entry k's face plane, along the cell's outward normal.
+  [[nodiscard]] double beyond(int k, const Eigen::Vector3d& x) const {
+    const Eigen::Vector4d& plane = planes[static_cast<std::size_t>(k)];
+    return plane.head<3>().dot(x) - plane[3];
   }
   template <class F>
   void each_face(int cell, F&& fn) const {
@@ -91,12 +101,19 @@ struct GridData {
 // Step 1. `planar`: a one-cell-thick grid of a planar system, whose cell size is measured in the
 // plane (sqrt(volume / thickness)); its centres all lie in one plane z = const.
 GridData prepare(const Grid& g, int priority, int fin, int solid, bool planar);
-// Signed distance of x beyond the face plane, along the cell's outward normal.
-double beyond(const GridData& d, int face, int cell, const Eigen::Vector3d& x);
 // How far x lies outside a cell: the largest distance beyond any of its face planes (<= 0 inside).
 double violation(const GridData& d, int cell, const Eigen::Vector3d& x);
+// The cells one locate_cell has walked through (mark[c] == stamp): a walk's step depends on its
+// cell and point alone, so a walk that reaches a cell an earlier walk of the same locate passed
+// through, or its own path again (a circle), would fail as that one did, and stops there. `mark`
+// holds one value per cell of the grid; `stamp` is new for each locate.
+struct WalkMarks {
+  std::span<int> mark;
+  int stamp = 0;
+};
 // Step 2: the cell containing x (grid frame), starting from `seed` if >= 0; -1: x is in no cell.
-int locate_cell(const GridData& d, const Eigen::Vector3d& x, int seed);
+// Without marks every walk runs to its end.
+int locate_cell(const GridData& d, const Eigen::Vector3d& x, int seed, WalkMarks marks = {});
 // The cell whose centre is nearest to x (grid frame).
 int nearest(const GridData& d, const Eigen::Vector3d& x);
 // Keeps the (at most) 16 cells whose centres are nearest to x, nearest first.
