@@ -23,6 +23,11 @@
 //   with the hull's drag at its last step, pressure and shear apart; --drag-csv FILE writes
 //   t, drag, pressure drag of every step of the last run (m^4/s^2); --ambient and
 //   --turbulence-gs: the SST's ambient sources and k, omega solver (RemusOversetRun).
+//   --profile-csv FILE --profile-every S: every S seconds of the last run, the hull's drag in
+//   --stations equal slices along x (pressure and shear apart, m^4/s^2) and, per slice, the
+//   area-weighted mean over its wall faces of the first cell's k / (omega nu) (SST: the eddy
+//   viscosity ratio away from the limiter) and of the wall face's nu_eff / nu (the law of the
+//   wall's nu + nu_t,w): where a boundary layer is turbulent and where it relaminarises.
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
@@ -35,6 +40,8 @@
 #include <tbb/global_control.h>
 #include <CLI/CLI.hpp>
 
+#include "auvloop/engine/fv/forces.hpp"
+#include "auvloop/engine/fv/vehicle_overset.hpp"
 #include "auvloop/engine/validation.hpp"
 
 using namespace auvloop;
@@ -54,6 +61,50 @@ double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   const std::size_t n = v.size();
   return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// One hull profile (--profile-csv): per slice along x its wall area, drag (pressure, shear),
+// and the area-weighted means of the first cell's k / (omega nu) and the face's nu_eff / nu.
+void write_profile(std::ostream& out, const fv::Pimple& flow, int stations) {
+  const auto& mesh = flow.mesh();
+  const std::string hull = fv::VehicleOverset::hull_wall();
+  const auto faces = fv::face_forces(flow, hull);
+  const fv::ScalarField *k = nullptr, *omega = nullptr;
+  if (const auto* model = flow.turbulence())
+    for (const auto* field : model->fields()) {
+      if (field->name == "k") k = field;
+      if (field->name == "omega") omega = field;
+    }
+  double lo = 1e300, hi = -1e300;
+  for (std::size_t i = 0; i < faces.counted.size(); ++i) {
+    const double x = mesh.face_centre(faces.start + static_cast<int>(i)).x();
+    lo = std::min(lo, x);
+    hi = std::max(hi, x);
+  }
+  const auto n = static_cast<std::size_t>(stations);
+  std::vector<double> area(n), pressure(n), shear(n), nut(n), nu_eff(n);
+  const double nu = flow.settings().nu;
+  for (std::size_t i = 0; i < faces.counted.size(); ++i) {
+    if (!faces.counted[i]) continue;
+    const int f = faces.start + static_cast<int>(i);
+    const double x = mesh.face_centre(f).x();
+    const auto s = std::min(n - 1, static_cast<std::size_t>((x - lo) / (hi - lo) * stations));
+    const double a = mesh.area(f).norm();
+    const auto P = static_cast<std::size_t>(mesh.owner(f));
+    area[s] += a;
+    pressure[s] -= faces.pressure[i].x();
+    shear[s] -= faces.viscous[i].x();
+    if (k != nullptr && omega != nullptr) nut[s] += a * k->cells[P] / (omega->cells[P] * nu);
+    if (const auto* model = flow.turbulence())
+      nu_eff[s] += a * model->nu_eff()[static_cast<std::size_t>(f)] / nu;
+  }
+  for (std::size_t s = 0; s < n; ++s) {
+    const double a = area[s] > 0 ? area[s] : 1.0;
+    out << flow.time() << ',' << lo + (hi - lo) * static_cast<double>(s) / stations << ','
+        << lo + (hi - lo) * static_cast<double>(s + 1) / stations << ',' << area[s] << ','
+        << pressure[s] << ',' << shear[s] << ',' << nut[s] / a << ',' << nu_eff[s] / a << '\n';
+  }
+  out.flush();
 }
 
 struct Turning {  // the turning steps' figures of one run
@@ -102,6 +153,18 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"upwind", "linear-upwind", "linear-upwind-limited", "van-leer-skew"}));
   std::string drag_csv;
   app.add_option("--drag-csv", drag_csv, "Write t, drag, pressure drag per step of the last run");
+  std::string profile_csv;
+  double profile_every = 0.25;
+  int stations = 32;
+  app.add_option("--profile-csv", profile_csv,
+                 "Write the hull's drag and eddy viscosity per slice along x every "
+                 "--profile-every seconds of the last run");
+  app.add_option("--profile-every", profile_every, "Seconds between hull profiles")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  app.add_option("--stations", stations, "Slices along x of a hull profile")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000));
   app.add_flag("--ambient", base.ambient_sources,
                "SST: ambient sources that hold the free stream (Spalart-Rumsey)");
   bool gs = false;
@@ -165,6 +228,21 @@ int main(int argc, char** argv) {
           m.continuity = std::max(m.continuity, r.continuity_error);
           m.interface_flux = std::max(m.interface_flux, r.interface_flux);
         };
+        std::ofstream profile;
+        double next_profile = profile_every;
+        if (!profile_csv.empty()) {
+          profile.open(profile_csv);
+          if (!profile) {
+            std::fprintf(stderr, "--profile-csv: cannot write %s\n", profile_csv.c_str());
+            return 2;
+          }
+          profile << "t,x_lo,x_hi,area,drag_pressure,drag_shear,nut_over_nu,nu_eff_over_nu\n";
+          run.after_step = [&](const fv::Pimple& flow) {
+            if (flow.time() + 0.5 * run.dt < next_profile) return;
+            next_profile += profile_every;
+            write_profile(profile, flow, stations);
+          };
+        }
         const auto result = engine::validation::remus_overset(run);
         if (!result.failure.empty())
           std::printf("  %s, %d threads: failed after %d steps: %s\n", coupling.c_str(), n_threads,

@@ -13,8 +13,7 @@ PatchForce& PatchForce::operator+=(const PatchForce& o) {
   return *this;
 }
 
-PatchForce patch_force(const Pimple& flow, const std::string& patch,
-                       const Eigen::Vector3d& moment_point) {
+FaceForces face_forces(const Pimple& flow, const std::string& patch) {
   const Mesh& mesh = flow.mesh();
   const auto& p = mesh.grid().patches[static_cast<std::size_t>(patch_index(mesh, patch))];
   // Cell gradients of the velocity components, for the transposed part of the stress.
@@ -22,7 +21,12 @@ PatchForce patch_force(const Pimple& flow, const std::string& patch,
       grad(mesh, flow.U.c[0]), grad(mesh, flow.U.c[1]), grad(mesh, flow.U.c[2])};
   const Overset* overset = flow.overset();
   const TurbulenceModel* model = flow.turbulence();
-  PatchForce force;
+  FaceForces out;
+  out.start = p.start;
+  const auto n = static_cast<std::size_t>(p.size);
+  out.pressure.assign(n, Eigen::Vector3d::Zero());
+  out.viscous.assign(n, Eigen::Vector3d::Zero());
+  out.counted.assign(n, 0);
   for (int i = 0; i < p.size; ++i) {
     const int f = p.start + i;
     const int b = f - mesh.internal_faces();
@@ -31,18 +35,31 @@ PatchForce patch_force(const Pimple& flow, const std::string& patch,
         model != nullptr ? model->nu_eff()[static_cast<std::size_t>(f)] : flow.settings().nu;
     const Eigen::Vector3d& S = mesh.area(f);
     const double dn = S.dot(mesh.d(f)) / S.norm();
-    const Eigen::Vector3d pressure = flow.p.boundary[static_cast<std::size_t>(b)] * S;
     const auto P = static_cast<std::size_t>(mesh.owner(f));
     Eigen::Vector3d transposed;  // (grad U)^T . S
     for (int k = 0; k < 3; ++k)
       transposed[k] = g[0][P][k] * S.x() + g[1][P][k] * S.y() + g[2][P][k] * S.z();
-    const Eigen::Vector3d viscous =
+    const auto is = static_cast<std::size_t>(i);
+    out.pressure[is] = flow.p.boundary[static_cast<std::size_t>(b)] * S;
+    out.viscous[is] =
         nu * ((flow.U.cell(mesh.owner(f)) - flow.U.face(b)) * S.norm() / dn - transposed);
-    const Eigen::Vector3d arm = mesh.face_centre(f) - moment_point;
-    force.pressure += pressure;
-    force.viscous += viscous;
-    force.pressure_moment += arm.cross(pressure);
-    force.viscous_moment += arm.cross(viscous);
+    out.counted[is] = 1;
+  }
+  return out;
+}
+
+PatchForce patch_force(const Pimple& flow, const std::string& patch,
+                       const Eigen::Vector3d& moment_point) {
+  const Mesh& mesh = flow.mesh();
+  const auto faces = face_forces(flow, patch);
+  PatchForce force;
+  for (std::size_t i = 0; i < faces.counted.size(); ++i) {
+    if (!faces.counted[i]) continue;
+    const Eigen::Vector3d arm = mesh.face_centre(faces.start + static_cast<int>(i)) - moment_point;
+    force.pressure += faces.pressure[i];
+    force.viscous += faces.viscous[i];
+    force.pressure_moment += arm.cross(faces.pressure[i]);
+    force.viscous_moment += arm.cross(faces.viscous[i]);
   }
   return force;
 }

@@ -143,6 +143,7 @@ RemusOversetResult remus_overset(const RemusOversetRun& run) {
     const auto hull = fv::patch_force(flow, fv::VehicleOverset::hull_wall());
     r.drag.push_back(-hull.total().x());
     r.drag_pressure.push_back(-hull.pressure.x());
+    if (run.after_step) run.after_step(flow);
   }
   if (sst)
     for (const auto& y : sst->y_plus())

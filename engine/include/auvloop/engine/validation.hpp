@@ -215,6 +215,8 @@ struct RemusOversetRun {
   std::function<void(const fv::StepReport&, double reassembly_seconds, double wall_distance_seconds,
                      double step_seconds)>
       on_step;
+  // After each step, the flow (its turbulence model and fields) for a caller's own figures.
+  std::function<void(const fv::Pimple&)> after_step;
 };
 struct RemusOversetResult {
   int cells = 0, steps = 0, planned_steps = 0;

@@ -40,7 +40,17 @@ struct PatchForce {
   PatchForce& operator+=(const PatchForce& o);
 };
 
-// One patch (by name; throws std::invalid_argument naming the grid's patches if unknown).
+// Per face of one patch (by name, as patch_force), in face order: its pressure and viscous force
+// (m^4/s^2) and whether it counts (false: its cell is an overset hole; both forces zero).
+struct FaceForces {
+  int start = 0;  // the patch's first face
+  std::vector<Eigen::Vector3d> pressure, viscous;
+  std::vector<char> counted;
+};
+FaceForces face_forces(const Pimple& flow, const std::string& patch);
+
+// One patch (by name; throws std::invalid_argument naming the grid's patches if unknown): the
+// sums of face_forces in face order.
 PatchForce patch_force(const Pimple& flow, const std::string& patch,
                        const Eigen::Vector3d& moment_point = Eigen::Vector3d::Zero());
 
