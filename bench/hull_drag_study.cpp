@@ -31,6 +31,7 @@
 #include "auvloop/engine/fv/output.hpp"
 #include "auvloop/engine/turbulence/sst_model.hpp"
 #include "auvloop/engine/turbulence/wall_distance.hpp"
+#include "auvloop/engine/validation.hpp"
 #include "auvloop/mesher/grid_io.hpp"
 #include "hull_case.hpp"
 
@@ -179,9 +180,8 @@ int main(int argc, char** argv) {
     std::fflush(stdout);
     // What is still to come, from the last two changes (geometric convergence: Aitken).
     const double change = std::abs(total - previous);
-    const double q = change_before > 0 ? change / change_before : 1.0;
-    const double remaining = q < 1 ? change / (1 - q) : std::numeric_limits<double>::infinity();
-    if (previous != 0 && remaining <= tolerance * std::abs(total)) {
+    if (previous != 0 && engine::validation::remaining_change(change, change_before) <=
+                             tolerance * std::abs(total)) {
       converged = true;
       break;
     }

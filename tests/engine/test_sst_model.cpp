@@ -185,7 +185,7 @@ class LinearViscosity final : public fv::TurbulenceModel {
   [[nodiscard]] std::vector<fv::ScalarField*> fields() override { return {}; }
   [[nodiscard]] std::vector<std::vector<double>*> state() override { return {&nu_}; }
   void set_overset(const fv::Overset*) override {}
-  [[nodiscard]] std::vector<Carried> carried() override { return {}; }
+  void carried(std::vector<Carried>& out) override { out.clear(); }
 
  private:
   std::vector<double> nu_;

@@ -313,7 +313,8 @@ SwingSst swing_sst(int threads) {
     // the present level and of the old one (n - 1 once the step has shifted the levels).
     std::vector<std::array<double, 4>> expected;  // k, k old, omega, omega old
     {
-      const auto carried = sst.carried();
+      std::vector<fv::TurbulenceModel::Carried> carried;
+      sst.carried(carried);
       for (int cell : out)
         expected.push_back({ov.interpolate(sst.k.cells, cell, fv::Overset::Bound::donors),
                             ov.interpolate(*carried[0].old, cell, fv::Overset::Bound::donors),

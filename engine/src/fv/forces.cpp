@@ -30,7 +30,7 @@ FaceForces face_forces(const Pimple& flow, const std::string& patch) {
   for (int i = 0; i < p.size; ++i) {
     const int f = p.start + i;
     const int b = f - mesh.internal_faces();
-    if (overset != nullptr && overset->status(mesh.owner(f)) == mesher::CellStatus::hole) continue;
+    if (overset != nullptr && !overset->in_flow(mesh.owner(f))) continue;
     const double nu =
         model != nullptr ? model->nu_eff()[static_cast<std::size_t>(f)] : flow.settings().nu;
     const Eigen::Vector3d& S = mesh.area(f);

@@ -94,8 +94,9 @@ std::pair<int, int> Pimple::follow_assembly() {
   auto& levels = work_.levels;
   levels = {&U.c[0].cells, &U.c[1].cells, &U.c[2].cells, &U_old_[0][0],
             &U_old_[0][1], &U_old_[0][2], &p.cells};
-  const auto carried =
-      turbulence_ != nullptr ? turbulence_->carried() : std::vector<TurbulenceModel::Carried>{};
+  auto& carried = work_.carried;
+  carried.clear();
+  if (turbulence_ != nullptr) turbulence_->carried(carried);
   for (const auto& field : carried) {
     levels.push_back(field.cells);
     levels.push_back(field.old);

@@ -475,7 +475,7 @@ void SstModel::check() const {
 }
 
 bool SstModel::in_flow(const WallFace& w) const {
-  return overset_ == nullptr || overset_->status(mesh_.owner(w.face)) != mesher::CellStatus::hole;
+  return overset_ == nullptr || overset_->in_flow(mesh_.owner(w.face));
 }
 
 std::vector<WallYPlus> SstModel::y_plus() const {

@@ -156,17 +156,10 @@ FlatPlateResult flat_plate_sst(const FlatPlateCase& c) {
                       "k {:.2e} omega {:.2e}",
                       it, cf, cd, report.momentum_residual, report.pressure_residual,
                       report.turbulence.k_residual, report.turbulence.omega_residual));
-    // The change still to come, from the last two changes: an iteration converging
-    // geometrically shrinks each change by q, so what remains is d q / (1 - q) (Aitken); a
-    // slowly converging SIMPLE run (q near 1) would stop far from its limit if the last change
-    // alone were tested.
-    const auto remaining = [](double d, double d_prev) {
-      const double q = d_prev > 0 ? d / d_prev : 1.0;
-      return q < 1 ? d * q / (1 - q) + d : std::numeric_limits<double>::infinity();
-    };
+    // The change still to come, from the last two changes (remaining_change: Aitken).
     const double dcf = std::abs(cf - cf_prev), dcd = std::abs(cd - cd_prev);
-    const bool settled = cf_prev > 0 && remaining(dcf, dcf_prev) <= c.tolerance * cf &&
-                         remaining(dcd, dcd_prev) <= c.tolerance * cd;
+    const bool settled = cf_prev > 0 && remaining_change(dcf, dcf_prev) <= c.tolerance * cf &&
+                         remaining_change(dcd, dcd_prev) <= c.tolerance * cd;
     dcf_prev = cf_prev > 0 ? dcf : 0.0;
     dcd_prev = cf_prev > 0 ? dcd : 0.0;
     cf_prev = cf;

@@ -8,6 +8,7 @@
 
 #include <array>
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,15 @@
 #include "auvloop/mesher/foil_grid.hpp"
 
 namespace auvloop::engine::validation {
+
+// What a geometrically converging sequence still changes, from its last two changes (Aitken):
+// each change shrinks by q = change / change_before, so what remains, the last change counted,
+// is change / (1 - q); infinite while the changes do not shrink (or there is no change before).
+// A slowly converging iteration (q near 1) would stop far from its limit on the last change alone.
+[[nodiscard]] inline double remaining_change(double change, double change_before) {
+  const double q = change_before > 0 ? change / change_before : 1.0;
+  return q < 1 ? change / (1 - q) : std::numeric_limits<double>::infinity();
+}
 
 struct Row {
   std::string quantity;

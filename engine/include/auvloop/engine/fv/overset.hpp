@@ -70,6 +70,9 @@ class Overset {
     return stencils_.status[static_cast<std::size_t>(c)];
   }
   [[nodiscard]] bool active(int c) const { return status(c) == mesher::CellStatus::active; }
+  // Whether cell c is in the flow (active or fringe, not a hole): a wall face of a hole cell lies
+  // inside another grid's body and counts for no force and no wall treatment.
+  [[nodiscard]] bool in_flow(int c) const { return status(c) != mesher::CellStatus::hole; }
   // Fringe and hole cells, ascending: the rows the coupling fixes.
   [[nodiscard]] std::span<const int> fixed_cells() const { return fixed_; }
   [[nodiscard]] std::span<const int> fringe_cells() const { return fringe_; }

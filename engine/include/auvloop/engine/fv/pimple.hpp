@@ -286,7 +286,8 @@ class Pimple {
     // Overset re-assembly: the filled cells' values of one sweep, the cells that hold a value,
     // those still to fill and those filled in a sweep, the faces that came alive.
     std::vector<double> fill;
-    std::vector<std::vector<double>*> levels;  // the fields carried, their old levels, p
+    std::vector<std::vector<double>*> levels;       // the fields carried, their old levels, p
+    std::vector<TurbulenceModel::Carried> carried;  // the turbulence model's (hook 9)
     std::vector<double> mean;
     std::vector<char> holds;
     std::vector<int> pending, filled, rest, born;

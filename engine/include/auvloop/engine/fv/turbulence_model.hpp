@@ -19,7 +19,7 @@
 //                            are steep) and hole rows to their
 //                            own, after any under-relaxation, and the fringe cells set to their
 //                            interpolation again after each solve;
-//   9. carried()             the transported fields' cells and their old time level (n - 1 when
+//   9. carried(out)          the transported fields' cells and their old time level (n - 1 when
 //                            the step's re-assembly stage runs, before begin_step), which Pimple's
 //                            re-assembly carries onto new cell statuses with U
 //                            (overset_transition.cpp; interpolated bounded, as in hook 8).
@@ -96,7 +96,9 @@ class TurbulenceModel {
     std::vector<double>* cells = nullptr;  // one per cell
     std::vector<double>* old = nullptr;    // the time level the next step keeps as n - 1
   };
-  [[nodiscard]] virtual std::vector<Carried> carried() = 0;
+  // Replaces `out`'s contents (a vector the caller keeps: nothing allocated once it has held as
+  // many).
+  virtual void carried(std::vector<Carried>& out) = 0;
 };
 
 }  // namespace auvloop::engine::fv

@@ -133,8 +133,8 @@ class SstModel final : public fv::TurbulenceModel {
   }
 
   void set_overset(const fv::Overset* overset) override { overset_ = overset; }
-  [[nodiscard]] std::vector<Carried> carried() override {
-    return {{&k.cells, &k_old_[0]}, {&omega.cells, &omega_old_[0]}};
+  void carried(std::vector<Carried>& out) override {
+    out.assign({{&k.cells, &k_old_[0]}, {&omega.cells, &omega_old_[0]}});
   }
 
   // Per wall patch, from the last correct() (or initialise()); on an overset mesh the wall faces
