@@ -13,7 +13,9 @@
 //      interface flux), per mass balance form, coupling and thread count in turn, in one
 //      process: the ratios of one run are at the same machine load. The bordered balance's
 //      extra work is inside the pressure solve, not in the overset part: compare the pressure
-//      stage (StepReport::seconds_pressure) with --balance bordered,response.
+//      stage (StepReport::seconds_pressure) with --balance bordered,response; with
+//      --balance off,bordered the bordered run also prices its extra pressure iterations over
+//      the unbalanced run's (a count, the same on any machine) at its own cost per iteration.
 //   bench_overset [--preset coarse] [--straight 5] [--steps 20] [--fin 0] [--dt 0.002]
 //                 [--coupling explicit,implicit] [--threads 1,2] [--outer 3]
 //                 [--balance bordered,response] [--sst]
@@ -107,6 +109,27 @@ void write_profile(std::ostream& out, const fv::Pimple& flow, int stations) {
   out.flush();
 }
 
+// One row of --step-csv.
+void write_step(std::ostream& out, const fv::Pimple& flow, const fv::StepReport& r) {
+  const auto& mesh = flow.mesh();
+  const auto faces = fv::face_forces(flow, fv::VehicleOverset::hull_wall());
+  double omega_min = 1e300, k_max = 0;
+  if (const auto* model = flow.turbulence())
+    for (const auto* field : model->fields())
+      for (std::size_t i = 0; i < faces.counted.size(); ++i) {
+        if (!faces.counted[i]) continue;
+        const double v =
+            field->cells[static_cast<std::size_t>(mesh.owner(faces.start + static_cast<int>(i)))];
+        if (field->name == "omega") omega_min = std::min(omega_min, v);
+        if (field->name == "k") k_max = std::max(k_max, v);
+      }
+  const auto& t = r.turbulence;
+  out << flow.time() << ',' << r.pressure_iterations << ',' << t.k_iterations << ','
+      << t.omega_iterations << ',' << t.k_residual << ',' << t.omega_residual << ','
+      << t.bounded_cells << ',' << t.limited_cells << ',' << omega_min << ',' << k_max << '\n';
+  out.flush();
+}
+
 struct Turning {  // the turning steps' figures of one run
   std::vector<double> share, step, reassembly, walls, overset, residual;
   std::vector<double> pressure_iterations, pressure_seconds;
@@ -159,6 +182,10 @@ int main(int argc, char** argv) {
   app.add_option("--profile-csv", profile_csv,
                  "Write the hull's drag and eddy viscosity per slice along x every "
                  "--profile-every seconds of the last run");
+  std::string step_csv;
+  app.add_option("--step-csv", step_csv,
+                 "Write per step of the last run: the turbulence solves' iterations, residuals "
+                 "and bounded cells, and the hull's first cells' smallest omega and largest k");
   app.add_option("--profile-every", profile_every, "Seconds between hull profiles")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
@@ -188,7 +215,7 @@ int main(int argc, char** argv) {
       straight_steps, turning_steps, base.outer_iterations);
   // Per coupling and thread count: the unbalanced run's median step less its overset part (the
   // step without overset work), when --balance lists off before the other forms.
-  std::map<std::string, double> plain;
+  std::map<std::string, double> plain, plain_iterations;
   for (const auto& balance : split(balances)) {
     try {
       base.mass_balance = fv::mass_balance_from_string(balance);
@@ -243,6 +270,27 @@ int main(int argc, char** argv) {
             write_profile(profile, flow, stations);
           };
         }
+        std::ofstream steps;
+        fv::StepReport last;
+        if (!step_csv.empty()) {
+          steps.open(step_csv);
+          if (!steps) {
+            std::fprintf(stderr, "--step-csv: cannot write %s\n", step_csv.c_str());
+            return 2;
+          }
+          steps << "t,pressure_iterations,k_iterations,omega_iterations,k_residual,omega_residual,"
+                   "bounded_cells,limited_cells,hull_omega_min,hull_k_max\n";
+          const auto on_step = run.on_step;
+          run.on_step = [&, on_step](const fv::StepReport& r, double a, double w, double s) {
+            last = r;
+            on_step(r, a, w, s);
+          };
+          const auto after = run.after_step;
+          run.after_step = [&, after](const fv::Pimple& flow) {
+            if (after) after(flow);
+            write_step(steps, flow, last);
+          };
+        }
         const auto result = engine::validation::remus_overset(run);
         if (!result.failure.empty())
           std::printf("  %s, %d threads: failed after %d steps: %s\n", coupling.c_str(), n_threads,
@@ -265,7 +313,10 @@ int main(int argc, char** argv) {
           rest.push_back(m.step[k] - m.reassembly[k] - m.overset[k]);
         }
         const std::string key = coupling + "/" + t;
-        if (run.mass_balance == fv::MassBalance::off) plain[key] = median(rest);
+        if (run.mass_balance == fv::MassBalance::off) {
+          plain[key] = median(rest);
+          plain_iterations[key] = median(m.pressure_iterations);
+        }
         std::printf(
             "  %-8s %-8s %d thread(s): s/step median %.3f (re-assembly %.3f of which wall "
             "distances %.3f, in-step overset %.3f, pressure stage %.3f); overset share median "
@@ -286,6 +337,21 @@ int main(int argc, char** argv) {
               "(%.3f s), the overset share is %.1f %%\n",
               coupling.c_str(), balance.c_str(), n_threads, it->second,
               100 * (median(m.step) - it->second) / median(m.step));
+        // The same run priced alone: the balance's extra pressure iterations (iteration counts
+        // do not depend on the machine's load) at this run's own cost per pressure iteration
+        // (the pressure stage over its iterations: an upper bound, the stage also assembles).
+        if (const auto it = plain_iterations.find(key);
+            it != plain_iterations.end() && run.mass_balance == fv::MassBalance::bordered) {
+          const double iterations = median(m.pressure_iterations);
+          const double extra =
+              (iterations - it->second) * median(m.pressure_seconds) / std::max(iterations, 1.0);
+          std::printf(
+              "  %-8s %-8s %d thread(s): its %.0f extra pressure iterations (against %.0f) at "
+              "this run's %.2f ms each: %.3f s a step; overset share with them %.1f %%\n",
+              coupling.c_str(), balance.c_str(), n_threads, iterations - it->second, it->second,
+              1e3 * median(m.pressure_seconds) / std::max(iterations, 1.0), extra,
+              100 * (median(m.reassembly) + median(m.overset) + extra) / median(m.step));
+        }
         std::fflush(stdout);
       }
     }

@@ -130,6 +130,7 @@ RemusOversetResult remus_overset(const RemusOversetRun& run) {
       r.max_courant = std::max(r.max_courant, rep.max_courant);
       r.status_changes += rep.status_changes;
       r.uncovered_cells += rep.uncovered_cells;
+      r.max_bounded_cells = std::max(r.max_bounded_cells, rep.turbulence.bounded_cells);
       if (run.on_step) run.on_step(rep, reassembly, wall_distance, step_seconds);
     } catch (const fv::DivergenceError& e) {
       r.failure = e.what();

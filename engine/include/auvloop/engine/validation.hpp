@@ -238,6 +238,7 @@ struct RemusOversetResult {
   std::vector<double> t, drag;        // hull force along -x (N per unit density, m^4/s^2)
   std::vector<double> drag_pressure;  // its pressure part (the rest is shear)
   double hull_y_plus_mean = 0, hull_y_plus_max = 0;  // SST: the hull's first cells at the end
+  long max_bounded_cells = 0;  // SST: the most cells a step's bound raised to k_min or omega_min
   // With keep_fields: U's components and p per cell, phi per face, after the last step.
   std::array<std::vector<double>, 3> U;
   std::vector<double> p, phi;
