@@ -111,15 +111,18 @@ void write_profile(std::ostream& out, const fv::Pimple& flow, int stations) {
 
 // One row of --step-csv.
 void write_step(std::ostream& out, const fv::Pimple& flow, const fv::StepReport& r) {
+  // The hull's wall faces in the flow (no forces needed: face_forces would take U's gradients).
   const auto& mesh = flow.mesh();
-  const auto faces = fv::face_forces(flow, fv::VehicleOverset::hull_wall());
+  const auto& hull = mesh.grid().patches[static_cast<std::size_t>(
+      fv::patch_index(mesh, fv::VehicleOverset::hull_wall()))];
+  const auto* overset = flow.overset();
   double omega_min = 1e300, k_max = 0;
   if (const auto* model = flow.turbulence())
     for (const auto* field : model->fields())
-      for (std::size_t i = 0; i < faces.counted.size(); ++i) {
-        if (!faces.counted[i]) continue;
-        const double v =
-            field->cells[static_cast<std::size_t>(mesh.owner(faces.start + static_cast<int>(i)))];
+      for (int f = hull.start; f < hull.start + hull.size; ++f) {
+        const int cell = mesh.owner(f);
+        if (overset != nullptr && !overset->in_flow(cell)) continue;
+        const double v = field->cells[static_cast<std::size_t>(cell)];
         if (field->name == "omega") omega_min = std::min(omega_min, v);
         if (field->name == "k") k_max = std::max(k_max, v);
       }
