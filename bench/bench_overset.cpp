@@ -30,6 +30,9 @@
 //   area-weighted mean over its wall faces of the first cell's k / (omega nu) (SST: the eddy
 //   viscosity ratio away from the limiter) and of the wall face's nu_eff / nu (the law of the
 //   wall's nu + nu_t,w): where a boundary layer is turbulent and where it relaminarises.
+//   --checkpoint FILE --checkpoint-step N writes the last run's exact state after step N, and
+//   --restart FILE continues every run from such a file (a straight-phase step, the same
+//   options): a late event of a long run examined again in seconds.
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
@@ -195,6 +198,15 @@ int main(int argc, char** argv) {
   app.add_option("--stations", stations, "Slices along x of a hull profile")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000));
+  std::string checkpoint_to, restart;
+  app.add_option("--checkpoint", checkpoint_to,
+                 "Write the state after step --checkpoint-step of the last run to this file");
+  app.add_option("--checkpoint-step", base.checkpoint_step, "The step --checkpoint writes")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--restart", restart,
+                 "Continue every run from this --checkpoint file (a straight-phase step, the "
+                 "same options)")
+      ->check(CLI::ExistingFile);
   app.add_flag("--ambient", base.ambient_sources,
                "SST: ambient sources that hold the free stream (Spalart-Rumsey)");
   bool gs = false;
@@ -206,6 +218,11 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   if (gs) base.turbulence_solver = fv::AsymmetricMethod::bicgstab_gs;
   base.convection = fv::convection_from_string(convection);
+  base.restart = restart;
+  if (!checkpoint_to.empty() && base.checkpoint_step <= 0) {
+    std::fprintf(stderr, "--checkpoint needs --checkpoint-step\n");
+    return 2;
+  }
   base.straight = straight_steps * base.dt;
   base.turning = turning_steps * base.dt;
   base.fin_rate = 30 * std::numbers::pi / 180;
@@ -236,6 +253,7 @@ int main(int argc, char** argv) {
         tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                                   static_cast<std::size_t>(n_threads));
         auto run = base;
+        run.checkpoint_to = checkpoint_to;
         try {
           run.coupling = fv::overset_coupling_from_string(coupling);
         } catch (const std::invalid_argument& e) {
@@ -243,10 +261,9 @@ int main(int argc, char** argv) {
           return 2;
         }
         Turning m;
-        int step = 0;
         run.on_step = [&](const fv::StepReport& r, double reassembly, double walls,
                           double seconds) {
-          if (++step <= straight_steps) return;
+          if (r.step <= straight_steps) return;  // the run's step number, a restart's too
           m.share.push_back((reassembly + r.seconds_overset) / (reassembly + seconds));
           m.step.push_back(reassembly + seconds);
           m.reassembly.push_back(reassembly);

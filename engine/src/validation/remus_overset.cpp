@@ -11,7 +11,8 @@
 //      update at the new deflections (an orphan throws: no fringe cell is ever without active
 //      donors), the wall distances re-measured where a fin may now be nearest (cells in the
 //      flow only), the fin's axes turning about its post at fin_rate (VehicleOverset::motions),
-//      Pimple::step carrying the fields onto the new statuses;
+//      Pimple::step carrying the fields onto the new statuses (a restart continues from its
+//      checkpoint's step; RemusOversetRun::checkpoint_to writes one after a chosen step);
 //   3. per step the continuity error over the active cells and the interface flux (Pimple's
 //      report) and the hull's force (fv::patch_force on "hull/hull"); a DivergenceError ends the
 //      run and is reported, with the steps done.
@@ -104,7 +105,14 @@ RemusOversetResult remus_overset(const RemusOversetRun& run) {
   r.cells = mesh.cells();
   const int straight_steps = static_cast<int>(std::lround(run.straight / run.dt));
   r.planned_steps = straight_steps + static_cast<int>(std::lround(run.turning / run.dt));
-  for (int n = 0; n < r.planned_steps; ++n) {  // 2.
+  if (!run.restart.empty()) {
+    flow.read_checkpoint(run.restart);
+    if (flow.steps() > straight_steps)
+      throw std::invalid_argument("remus_overset: " + run.restart.string() + " is at step " +
+                                  std::to_string(flow.steps()) +
+                                  ", after the straight phase (a restart holds no fin placements)");
+  }
+  for (int n = flow.steps(); n < r.planned_steps; ++n) {  // 2.
     const bool turn = n >= straight_steps;
     try {
       double reassembly = 0, wall_distance = 0;
@@ -145,6 +153,8 @@ RemusOversetResult remus_overset(const RemusOversetRun& run) {
     r.drag.push_back(-hull.total().x());
     r.drag_pressure.push_back(-hull.pressure.x());
     if (run.after_step) run.after_step(flow);
+    if (!run.checkpoint_to.empty() && r.steps == run.checkpoint_step)
+      flow.write_checkpoint(run.checkpoint_to);
   }
   if (sst)
     for (const auto& y : sst->y_plus())

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <array>
+#include <filesystem>
 #include <functional>
 #include <limits>
 #include <string>
@@ -222,6 +223,11 @@ struct RemusOversetRun {
   bool ambient_sources = false;
   fv::AsymmetricMethod turbulence_solver = fv::AsymmetricMethod::bicgstab_jacobi;
   bool keep_fields = false;  // the result holds the last step's fields
+  // Exact restart (Pimple::write_checkpoint): with checkpoint_to set, the state after step
+  // checkpoint_step is written there; with restart set, the run continues from such a file
+  // (same preset and settings; the straight phase only: the fins' placements are not stored).
+  std::filesystem::path checkpoint_to, restart;
+  int checkpoint_step = 0;
   std::function<void(const fv::StepReport&, double reassembly_seconds, double wall_distance_seconds,
                      double step_seconds)>
       on_step;
