@@ -162,6 +162,8 @@ struct OversetAssembler::Impl {
     if (loc >= 0) own.found[hu] = loc;
     return loc;
   }
+  // The same from the thread's last cell found in h.
+  int find_cell(int h, const Eigen::Vector3d& xl) const { return find_cell(h, xl, last_found(h)); }
   // A walk ends in the cell containing its point, but a point on a face between two cells may end
   // in either, depending on the seed: the seeds are forgotten at the start of every block of
   // cells (for_blocks) and every serial stage, so that where a walk ends depends on the cells
@@ -324,8 +326,7 @@ struct OversetAssembler::Impl {
         if (!boxes[k].contains(x)) continue;
         const auto hu = static_cast<std::size_t>(others[k]);
         const auto& hd = grids[hu];
-        const int loc =
-            find_cell(others[k], hd.grid->placement.inverse() * x, last_found(others[k]));
+        const int loc = find_cell(others[k], hd.grid->placement.inverse() * x);
         if (loc < 0) continue;
         const auto lu = static_cast<std::size_t>(loc);
         if (wall_hole[hu][lu] || depth[hu][lu] < cover_depth(settings, d.size[cu], hd.radius[lu]))
@@ -878,7 +879,7 @@ struct OversetAssembler::Impl {
       const auto& hd = grids[hu];
       const auto& ha = a.grids[hu];
       const Eigen::Vector3d xl = hd.grid->placement.inverse() * x;
-      const int loc = find_cell(h, xl, last_found(h));
+      const int loc = find_cell(h, xl);
       std::vector<int> cells;
       std::vector<double> w;
       if (loc < 0 || !usable[hu][static_cast<std::size_t>(loc)] ||
@@ -1049,7 +1050,7 @@ struct OversetAssembler::Impl {
       if (h == dg && !fallback) break;
       if (h == g) continue;
       const auto& od = grids[static_cast<std::size_t>(h)];
-      const int loc = find_cell(h, od.grid->placement.inverse() * x, last_found(h));
+      const int loc = find_cell(h, od.grid->placement.inverse() * x);
       if (loc >= 0 && a.grids[static_cast<std::size_t>(h)].status[static_cast<std::size_t>(loc)] ==
                           CellStatus::active)
         return true;
