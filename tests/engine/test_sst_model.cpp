@@ -9,7 +9,10 @@
 //   - the SST flat plate bitwise the same on 1, 2 and 3 threads;
 //   - a non-finite omega is diagnosed as a divergence naming the equation and the cell, with
 //     the last good k and omega kept;
-//   - a checkpoint restart continues bitwise (k, omega and their old levels stored).
+//   - a checkpoint restart continues bitwise (k, omega and their old levels stored);
+//   - the positivity bound raises a cell below the floor to its neighbours' mean (each at least
+//     the floor), computed from the solve's values, and leaves every other cell as it was; the
+//     sinks' reference is the cell's own value except at a local minimum (its neighbours' mean).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -30,6 +33,7 @@
 #include "auvloop/mesher/flat_plate_grid.hpp"
 #include "auvloop/mesher/generators.hpp"
 #include "temp_dir.hpp"
+#include "turbulence/positivity.hpp"
 
 using namespace auvloop;
 namespace fv = engine::fv;
@@ -233,6 +237,92 @@ Couette couette(int n) {
   return r;
 }
 }  // namespace
+
+TEST(SstBound, RaisesACellBelowTheFloorToItsNeighboursMeanAndLeavesTheOthers) {
+  // 4 x 3 unit cells, one deep (front and back empty): cell i + 4 j at (i + 0.5, j + 0.5).
+  mesher::BoxPatches patches;
+  patches.names = {"left", "right", "bottom", "top", "front", "back"};
+  patches.types = {mesher::PatchType::wall, mesher::PatchType::wall,  mesher::PatchType::wall,
+                   mesher::PatchType::wall, mesher::PatchType::empty, mesher::PatchType::empty};
+  const auto grid = mesher::cartesian_box(mesher::graded_nodes(0, 4, 4),
+                                          mesher::graded_nodes(0, 3, 3), {0, 1}, patches);
+  const fv::Mesh mesh(grid);
+  ASSERT_EQ(mesh.cells(), 12);
+  const auto at = [&](double x, double y) {
+    for (int c = 0; c < mesh.cells(); ++c)
+      if ((mesh.centre(c) - Eigen::Vector3d(x, y, 0.5)).norm() < 1e-12) return c;
+    ADD_FAILURE() << "no cell at " << x << ", " << y;
+    return 0;
+  };
+  const double floor = 1e-10;
+  std::vector<double> phi(12);
+  for (int c = 0; c < 12; ++c)
+    phi[static_cast<std::size_t>(c)] = 1 + mesh.centre(c).x() + 10 * mesh.centre(c).y();
+  const auto v = [&](double x, double y) { return 1 + x + 10 * y; };
+  const auto A = static_cast<std::size_t>(at(1.5, 1.5)), B = static_cast<std::size_t>(at(2.5, 1.5));
+  const auto C = static_cast<std::size_t>(at(0.5, 0.5));
+  phi[A] = -3;            // interior, beside B
+  phi[B] = 0.5 * floor;   // positive but below the floor
+  phi[C] = std::nan("");  // a corner: two internal faces
+  const auto before = phi;
+  std::vector<double> scratch;
+  EXPECT_EQ(engine::turbulence::bound(mesh, nullptr, phi, floor, scratch), 3);
+  // A's neighbours: (0.5, 1.5), (1.5, 0.5), (1.5, 2.5) and B, which counts as the floor.
+  EXPECT_NEAR(phi[A], (v(0.5, 1.5) + v(1.5, 0.5) + v(1.5, 2.5) + floor) / 4, 1e-14);
+  // B's: (3.5, 1.5), (2.5, 0.5), (2.5, 2.5) and A's value from the solve, floored.
+  EXPECT_NEAR(phi[B], (v(3.5, 1.5) + v(2.5, 0.5) + v(2.5, 2.5) + floor) / 4, 1e-14);
+  EXPECT_NEAR(phi[C], (v(1.5, 0.5) + v(0.5, 1.5)) / 2, 1e-14);
+  for (std::size_t c = 0; c < 12; ++c)
+    if (c != A && c != B && c != C) {
+      EXPECT_EQ(phi[c], before[c]) << c;
+    }
+  // Nothing below the floor: nothing changes.
+  const auto bounded = phi;
+  EXPECT_EQ(engine::turbulence::bound(mesh, nullptr, phi, floor, scratch), 0);
+  EXPECT_EQ(phi, bounded);
+}
+
+TEST(SstSinkReference, IsTheCellsValueExceptAtALocalMinimumWhereItIsTheNeighboursMean) {
+  // 4 x 3 unit cells, one deep: every internal face's Laplacian weight |S|^2 / (S . d) is 1.
+  mesher::BoxPatches patches;
+  patches.names = {"left", "right", "bottom", "top", "front", "back"};
+  patches.types = {mesher::PatchType::wall, mesher::PatchType::wall,  mesher::PatchType::wall,
+                   mesher::PatchType::wall, mesher::PatchType::empty, mesher::PatchType::empty};
+  const auto grid = mesher::cartesian_box(mesher::graded_nodes(0, 4, 4),
+                                          mesher::graded_nodes(0, 3, 3), {0, 1}, patches);
+  const fv::Mesh mesh(grid);
+  const auto at = [&](double x, double y) {
+    for (int c = 0; c < mesh.cells(); ++c)
+      if ((mesh.centre(c) - Eigen::Vector3d(x, y, 0.5)).norm() < 1e-12)
+        return static_cast<std::size_t>(c);
+    ADD_FAILURE() << "no cell at " << x << ", " << y;
+    return std::size_t{0};
+  };
+  const auto v = [](double x, double y) { return 1 + x + 10 * y; };
+  std::vector<double> phi(12);
+  for (int c = 0; c < 12; ++c)
+    phi[static_cast<std::size_t>(c)] = v(mesh.centre(c).x(), mesh.centre(c).y());
+  const double floor = 1e-10;
+  std::vector<double> ref;
+  engine::turbulence::sink_reference(mesh, nullptr, phi, floor, ref);
+  // A linear field's only minimum is the corner cell (0.5, 0.5); every other cell keeps its own.
+  const auto corner = at(0.5, 0.5);
+  EXPECT_DOUBLE_EQ(ref[corner], (v(1.5, 0.5) + v(0.5, 1.5)) / 2);
+  for (std::size_t c = 0; c < 12; ++c) {
+    if (c != corner) {
+      EXPECT_EQ(ref[c], phi[c]) << c;
+    }
+  }
+  // A cell far below its neighbours (the trap of a sink that does not vanish with phi_c): its
+  // neighbours' mean. Below the floor with no higher value anywhere: the floor.
+  const auto A = at(1.5, 1.5);
+  phi[A] = 1e-13;
+  engine::turbulence::sink_reference(mesh, nullptr, phi, floor, ref);
+  EXPECT_DOUBLE_EQ(ref[A], (v(0.5, 1.5) + v(2.5, 1.5) + v(1.5, 0.5) + v(1.5, 2.5)) / 4);
+  std::fill(phi.begin(), phi.end(), 1e-20);
+  engine::turbulence::sink_reference(mesh, nullptr, phi, floor, ref);
+  for (double r : ref) EXPECT_EQ(r, floor);
+}
 
 TEST(FvEffectiveViscosity, CouetteFlowWithViscosityLinearInYIsSecondOrder) {
   const auto coarse = couette(16), fine = couette(32);

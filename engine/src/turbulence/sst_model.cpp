@@ -15,6 +15,7 @@
 #include "../fv/parallel.hpp"
 #include "../fv/scratch.hpp"
 #include "../fv/stopwatch.hpp"
+#include "positivity.hpp"
 
 namespace auvloop::engine::turbulence {
 
@@ -330,15 +331,13 @@ fv::TurbulenceReport SstModel::correct(const fv::TurbulenceInput& in) {
   };
   const auto solve = [&](fv::ScalarField& phi_field, const char* name, double floor,
                          double& residual, int& iterations) {
-    // A negative net explicit source (the convection scheme's deferred correction next to a
-    // steep rise, e.g. ahead of a wall cell's fixed omega) would drive the cell negative: it is
-    // taken implicitly instead, as a destruction rate -source / phi (Patankar), which keeps the
-    // matrix an M-matrix with a non-negative source, so every iterate stays positive, and leaves
-    // the converged solution unchanged.
+    // A negative net explicit source is taken implicitly, as a rate -source / ref_c (Patankar),
+    // with ref_c from positivity.hpp (step 1 there: phi_c, or more at a local minimum).
+    sink_reference(mesh_, overset_, phi_field.cells, floor, ref_);
     parallel_for(mesh_.cells(), [&](int cell) {
       const auto s = static_cast<std::size_t>(cell);
       if (eq_.source[s] >= 0) return;
-      eq_.diag[s] -= eq_.source[s] / std::max(phi_field.cells[s], floor);
+      eq_.diag[s] -= eq_.source[s] / ref_[s];
       eq_.source[s] = 0;
     });
     if (relax && settings_.relax < 1) eq_.relax(phi_field.cells, settings_.relax);
@@ -354,12 +353,13 @@ fv::TurbulenceReport SstModel::correct(const fv::TurbulenceInput& in) {
     // 1/s there, 1-100 in the free stream; k likewise over six decades): unscaled, a solve would
     // stop before it has touched the free stream, which then stays frozen at whatever the start
     // left there (a converged-looking state 1.4 % low in Cf on the plate). Each row is divided by
-    // diag_c max(phi_c, floor), so a row's residual is its cell's relative error and the
-    // tolerance holds in every cell; the iterates are those of the unscaled system.
+    // diag_c ref_c, so a row's residual is its cell's error relative to its own level (or its
+    // neighbours', where it lies below them) and the tolerance holds in every cell; the iterates
+    // are those of the unscaled system.
     Scratch<double> scale(n);
     parallel_for(mesh_.cells(), [&](int cell) {
       const auto s = static_cast<std::size_t>(cell);
-      scale[s] = 1 / (eq_.diag[s] * std::max(phi_field.cells[s], floor));
+      scale[s] = 1 / (eq_.diag[s] * ref_[s]);
     });
     eq_.scale_rows(mesh_, *scale);
     const auto stats = fv::solve_named(mesh_, eq_, phi_field.cells, name, [&] {
@@ -368,16 +368,7 @@ fv::TurbulenceReport SstModel::correct(const fv::TurbulenceInput& in) {
     });
     residual = stats.initial_residual;
     iterations = stats.iterations;
-    // Counts are sums of integers, exact in any order (and far below 2^53).
-    const auto bounded =
-        fv::parallel_sum<1>(mesh_.cells(), [&](int b, int e, std::array<double, 1>& count) {
-          for (auto s = static_cast<std::size_t>(b); s < static_cast<std::size_t>(e); ++s)
-            if (!(phi_field.cells[s] >= floor)) {
-              phi_field.cells[s] = floor;
-              count[0] += 1;
-            }
-        });
-    report.bounded_cells += static_cast<long>(bounded[0]);
+    report.bounded_cells += bound(mesh_, overset_, phi_field.cells, floor, ref_);
     if (overset_ != nullptr) {  // the donors' new values
       const fv::ScopedSeconds clock(report.seconds_overset);
       overset_->apply(phi_field.cells, own, fv::Overset::Bound::donors);

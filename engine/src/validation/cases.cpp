@@ -634,7 +634,8 @@ Result run_remus_overset(bool quick, bool sst) {
   // the straight run's bounded cells grew from 48 at 0.05 s (a ring of cells round the axis
   // ahead of the nose) to 490 at 1.19 s, and at 1.2 s omega collapsed to its floor in the first
   // cells of the hull's rear half and 38,000 cells were bounded a step, the shear drag falling by
-  // a third: a run that passed on its figures of mass.
+  // a third: a run that passed on its figures of mass. (Two positivity traps, mended in session
+  // 27: turbulence/positivity.hpp.)
   if (sst)
     res.rows.push_back(bound_row("max cells bounded in a step / cells",
                                  static_cast<double>(r.max_bounded_cells) / r.cells, 0.01));

@@ -32,10 +32,14 @@
 //      momentum equation's wall flux (nu + nu_t,w) U_t / y is the law-of-the-wall shear
 //      u_tau^2 at any y+ (nu_t,w = 0 in the viscous sublayer: the no-slip wall of a resolved
 //      boundary layer).
-// Positivity: the bound raises k below k_min and omega below omega_min to the floor and counts
-// the cells it changed (TurbulenceReport::bounded_cells): with bounded convection and implicit
-// destruction it should act rarely, and a report that it acts often says the solution is in
-// trouble. Free-stream values at inlets, zero gradient at outlets and symmetry planes.
+// Positivity (engine/src/turbulence/positivity.hpp; docs/cfd.md, "Positivity"): a negative
+// net explicit source is taken implicitly as a rate -source / ref_c with ref_c = phi_c, except at
+// a local minimum, where ref_c is at least its neighbours' mean; after the solve the bound raises
+// a cell's k below k_min or omega below omega_min to its neighbours' mean (each at least the
+// floor; OpenFOAM's bound()) and counts the cells it changed (TurbulenceReport::bounded_cells):
+// with bounded convection and implicit destruction it should act rarely, and a report that it
+// acts often says the solution is in trouble. Free-stream values at inlets, zero gradient at
+// outlets and symmetry planes.
 #pragma once
 
 #include <array>
@@ -176,6 +180,7 @@ class SstModel final : public fv::TurbulenceModel {
   std::vector<int> rough_cells_;             // wall cells whose weight is 1, ascending
   std::vector<double> rough_omega_;          // their omega
   std::vector<double> S2_, F1_, nu_eff_;
+  std::vector<double> ref_;  // positivity.hpp's scratch: the sink references, the bound's values
   std::vector<double> k0_, omega0_;  // start_from()
   std::array<std::vector<double>, 2> k_old_, omega_old_;
   std::vector<std::vector<double>> good_;  // state() at the start of the step
