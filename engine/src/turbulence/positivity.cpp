@@ -42,8 +42,8 @@ void sink_reference(const fv::Mesh& mesh, const fv::Overset* overset,
   });
 }
 
-long bound(const fv::Mesh& mesh, const fv::Overset* overset, std::vector<double>& phi,
-           double floor, std::vector<double>& scratch) {
+long bound(const fv::Mesh& mesh, const fv::Overset* overset, std::vector<double>& phi, double floor,
+           std::vector<double>& scratch) {
   scratch.resize(phi.size());
   const auto raised =  // a count: sums of integers, exact in any order
       fv::parallel_sum<1>(mesh.cells(), [&](int b, int e, std::array<double, 1>& count) {

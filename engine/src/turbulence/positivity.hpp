@@ -35,7 +35,7 @@ void sink_reference(const fv::Mesh& mesh, const fv::Overset* overset,
                     const std::vector<double>& phi, double floor, std::vector<double>& ref);
 
 // Step 2: returns how many cells were raised; scratch is resized to the cells.
-long bound(const fv::Mesh& mesh, const fv::Overset* overset, std::vector<double>& phi,
-           double floor, std::vector<double>& scratch);
+long bound(const fv::Mesh& mesh, const fv::Overset* overset, std::vector<double>& phi, double floor,
+           std::vector<double>& scratch);
 
 }  // namespace auvloop::engine::turbulence
