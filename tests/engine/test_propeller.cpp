@@ -1,0 +1,142 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The propeller's open-water curves and body-force disk (engine/propeller.hpp), each against
+// something independent of the code:
+//   - the B-series polynomials against the check values of propeller.md (computed from the
+//     published coefficients, P/D 1.0, Z 3, AE/A0 0.65 and 0.718) and against the two points
+//     Fossen's MSS remus100 model quotes;
+//   - the Hough-Ordway disk's force, integrated over the disk by quadrature in r (the code
+//     evaluated point by point), against the thrust and torque it was given, and its directions
+//     (thrown aft; the torque on the fluid along +axis for a right-handed turn);
+//   - the table's interpolation and its errors.
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "auvloop/engine/propeller.hpp"
+
+using namespace auvloop::engine;
+
+TEST(BSeries, ReproducesTheCheckValuesOfThePublishedCoefficients) {
+  struct Row {
+    double J, kt65, kq65_10, kt718, kq718_10;
+  };
+  const std::vector<Row> rows{{0.0, 0.44152, 0.67188, 0.45663, 0.70029},
+                              {0.4, 0.29568, 0.47178, 0.30106, 0.48530},
+                              {0.6, 0.20859, 0.34909, 0.20960, 0.35473},
+                              {0.8, 0.11721, 0.21850, 0.11461, 0.21829}};
+  for (const auto& row : rows) {
+    const auto a = b_series({3, 1.0, 0.65}, row.J);
+    const auto b = b_series({3, 1.0, 0.718}, row.J);
+    EXPECT_NEAR(a.KT, row.kt65, 1e-4) << "J " << row.J;
+    EXPECT_NEAR(10 * a.KQ, row.kq65_10, 1e-4) << "J " << row.J;
+    EXPECT_NEAR(b.KT, row.kt718, 1e-4) << "J " << row.J;
+    EXPECT_NEAR(10 * b.KQ, row.kq718_10, 1e-4) << "J " << row.J;
+  }
+  // Fossen's remus100 (B3-71.8, P/D 1.0): KT 0.4566, KQ 0.0700 at J = 0; 0.1798, 0.0312 at 0.6632.
+  EXPECT_NEAR(b_series({3, 1.0, 0.718}, 0).KT, 0.4566, 1e-4);
+  EXPECT_NEAR(b_series({3, 1.0, 0.718}, 0).KQ, 0.0700, 1e-4);
+  EXPECT_NEAR(b_series({3, 1.0, 0.718}, 0.6632).KT, 0.1798, 1e-4);
+  EXPECT_NEAR(b_series({3, 1.0, 0.718}, 0.6632).KQ, 0.0312, 1e-4);
+}
+
+TEST(BSeries, NamesTheBoundAPropellerBreaks) {
+  EXPECT_FALSE(b_series_range_problem({3, 1.0, 0.718}).has_value());
+  const auto low_pitch = b_series_range_problem({3, 0.43, 0.718});
+  ASSERT_TRUE(low_pitch.has_value());
+  EXPECT_NE(low_pitch->find("P/D 0.43"), std::string::npos) << *low_pitch;
+  EXPECT_TRUE(b_series_range_problem({8, 1.0, 0.718}).has_value());
+  EXPECT_TRUE(b_series_range_problem({3, 1.0, 1.2}).has_value());
+}
+
+TEST(OpenWaterTable, InterpolatesLinearlyHoldsTheEndsAndNamesABadPoint) {
+  const OpenWaterTable table({{0.0, 0.4, 0.06}, {0.5, 0.2, 0.04}, {1.0, 0.0, 0.01}});
+  bool clamped = true;
+  const auto mid = table.at(0.25, &clamped);
+  EXPECT_FALSE(clamped);
+  EXPECT_DOUBLE_EQ(mid.KT, 0.3);
+  EXPECT_DOUBLE_EQ(mid.KQ, 0.05);
+  EXPECT_DOUBLE_EQ(table.at(0.5, &clamped).KT, 0.2);
+  EXPECT_FALSE(clamped);
+  EXPECT_DOUBLE_EQ(table.at(1.3, &clamped).KT, 0.0);
+  EXPECT_TRUE(clamped);
+  EXPECT_DOUBLE_EQ(table.at(-0.1, &clamped).KQ, 0.06);
+  EXPECT_TRUE(clamped);
+  EXPECT_THROW(OpenWaterTable({{0.0, 0.4, 0.06}}), std::invalid_argument);
+  try {
+    OpenWaterTable({{0.0, 0.4, 0.06}, {0.5, 0.2, 0.04}, {0.5, 0.1, 0.03}});
+    FAIL() << "a repeated J was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("point 3"), std::string::npos) << e.what();
+  }
+}
+
+namespace {
+// The disk's thrust and torque on the fluid by quadrature: the midpoint rule in r over [R_H,
+// R_P] at azimuth `theta` (the force is axisymmetric, the integral over theta is 2 pi times
+// one azimuth's) times the thickness (the force is uniform across it).
+struct Integral {
+  double thrust = 0, torque = 0;  // along -axis and +axis (on the fluid)
+};
+Integral integrate(const PropellerDisk& disk, double T, double Q, double theta, int n) {
+  const Eigen::Vector3d a = disk.axis;
+  const Eigen::Vector3d e1 = a.unitOrthogonal(), e2 = a.cross(e1);
+  const double dr = (disk.radius - disk.hub_radius) / n;
+  Integral out;
+  for (int i = 0; i < n; ++i) {
+    const double r = disk.hub_radius + (i + 0.5) * dr;
+    const Eigen::Vector3d radial = r * (std::cos(theta) * e1 + std::sin(theta) * e2);
+    const Eigen::Vector3d x = disk.centre + 0.3 * disk.thickness * a + radial;
+    const Eigen::Vector3d f = hough_ordway(disk, T, Q, x);
+    const double ring = 2 * std::numbers::pi * r * dr * disk.thickness;
+    out.thrust += -f.dot(a) * ring;
+    out.torque += radial.cross(f).dot(a) * ring;
+  }
+  return out;
+}
+}  // namespace
+
+TEST(HoughOrdway, IntegratesToTheThrustAndTorqueItWasGivenWithTheirDirections) {
+  PropellerDisk disk;
+  disk.centre = Eigen::Vector3d(-0.8, 0.01, -0.02);
+  disk.axis = Eigen::Vector3d(1, 0.2, -0.1).normalized();
+  disk.radius = 0.0699;  // REMUS 100: D = 5.5 in
+  disk.hub_radius = 0.02;
+  disk.thickness = 0.012;
+  const double T = 3.86 / 1025, Q = 0.543 / 1025;  // Prestero's 1500 rpm point, per density
+  for (int sense : {1, -1}) {
+    disk.sense = sense;
+    for (double theta : {0.0, 1.1, 4.0}) {
+      const auto s = integrate(disk, T, Q, theta, 400000);
+      EXPECT_NEAR(s.thrust / T, 1.0, 1e-7) << "theta " << theta;
+      EXPECT_NEAR(s.torque / (sense * Q), 1.0, 1e-7) << "theta " << theta;
+    }
+  }
+  // No hub: the distribution starts at the axis.
+  disk.hub_radius = 0;
+  disk.sense = 1;
+  const auto s = integrate(disk, T, Q, 0.5, 400000);
+  EXPECT_NEAR(s.thrust / T, 1.0, 1e-7);
+  EXPECT_NEAR(s.torque / Q, 1.0, 1e-7);
+}
+
+TEST(HoughOrdway, IsZeroOutsideTheDiskAndRejectsABadDisk) {
+  PropellerDisk disk;  // centre 0, axis +x, R_P 0.07, R_H 0.02, thickness 0.01
+  const double T = 1e-3, Q = 1e-4;
+  EXPECT_GT(hough_ordway(disk, T, Q, {0.004, 0.05, 0}).norm(), 0);
+  EXPECT_EQ(hough_ordway(disk, T, Q, {0.006, 0.05, 0}).norm(), 0);  // beyond half the thickness
+  EXPECT_EQ(hough_ordway(disk, T, Q, {0, 0.071, 0}).norm(), 0);     // beyond the tip
+  EXPECT_EQ(hough_ordway(disk, T, Q, {0, 0, 0.019}).norm(), 0);     // in the hub
+  EXPECT_EQ(hough_ordway(disk, T, Q, {0, 0, 0.07}).norm(), 0);      // at the tip: r* = 1
+  auto bad = disk;
+  bad.hub_radius = 0.08;
+  EXPECT_THROW((void)hough_ordway(bad, T, Q, {0, 0.05, 0}), std::invalid_argument);
+  bad = disk;
+  bad.axis = Eigen::Vector3d(1, 1, 0);
+  EXPECT_THROW((void)hough_ordway(bad, T, Q, {0, 0.05, 0}), std::invalid_argument);
+  bad = disk;
+  bad.sense = 0;
+  EXPECT_THROW((void)hough_ordway(bad, T, Q, {0, 0.05, 0}), std::invalid_argument);
+}
