@@ -7,7 +7,11 @@
 //   - the Hough-Ordway disk's force, integrated over the disk by quadrature in r (the code
 //     evaluated point by point), against the thrust and torque it was given, and its directions
 //     (thrown aft; the torque on the fluid along +axis for a right-handed turn);
-//   - the table's interpolation and its errors.
+//   - the table's interpolation and its errors;
+//   - the disk on a grid (fv::DiskForce): the fluid gets exactly the thrust and torque on
+//     coarse and fine grids, each cell's force tends to the continuous distribution, and the
+//     disk speed of a uniform stream is its axial component.
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -15,8 +19,12 @@
 
 #include <gtest/gtest.h>
 
+#include "auvloop/engine/fv/mesh.hpp"
+#include "auvloop/engine/fv/propeller_disk.hpp"
 #include "auvloop/engine/propeller.hpp"
+#include "auvloop/mesher/generators.hpp"
 
+using namespace auvloop;
 using namespace auvloop::engine;
 
 TEST(BSeries, ReproducesTheCheckValuesOfThePublishedCoefficients) {
@@ -139,4 +147,98 @@ TEST(HoughOrdway, IsZeroOutsideTheDiskAndRejectsABadDisk) {
   bad = disk;
   bad.sense = 0;
   EXPECT_THROW((void)hough_ordway(bad, T, Q, {0, 0.05, 0}), std::invalid_argument);
+}
+
+namespace {
+// A box of cubes of side h round the origin: x in [-0.01, 0.01], y and z in [-0.1, 0.1] (m).
+mesher::Grid box(double h) {
+  mesher::BoxPatches patches;
+  patches.names = {"x0", "x1", "y0", "y1", "z0", "z1"};
+  patches.types.fill(mesher::PatchType::wall);
+  const auto n = [h](double a, double b) { return static_cast<int>(std::lround((b - a) / h)); };
+  return mesher::cartesian_box(mesher::graded_nodes(-0.01, 0.01, n(-0.01, 0.01)),
+                               mesher::graded_nodes(-0.1, 0.1, n(-0.1, 0.1)),
+                               mesher::graded_nodes(-0.1, 0.1, n(-0.1, 0.1)), patches);
+}
+}  // namespace
+
+TEST(DiskForce, GivesTheFluidExactlyTheThrustAndTorqueOnAnyGridAndTheShapeOnAFineOne) {
+  const double T = 3.86 / 1025, Q = 0.543 / 1025;
+  PropellerDisk disk;
+  disk.radius = 0.0699;
+  disk.hub_radius = 0.02;
+  disk.thickness = 0.01;
+  for (double h : {0.01, 0.005, 0.0025}) {
+    const auto grid = box(h);
+    const fv::Mesh mesh(grid);
+    for (int sense : {1, -1}) {
+      disk.sense = sense;
+      const fv::DiskForce force(mesh, disk);
+      std::vector<Eigen::Vector3d> f(static_cast<std::size_t>(mesh.cells()),
+                                     Eigen::Vector3d::Zero());
+      force.apply(T, Q, f);
+      Eigen::Vector3d F = Eigen::Vector3d::Zero(), M = Eigen::Vector3d::Zero();
+      for (int c = 0; c < mesh.cells(); ++c) {
+        const auto s = static_cast<std::size_t>(c);
+        F += mesh.volume(c) * f[s];
+        M += (mesh.centre(c) - disk.centre).cross(mesh.volume(c) * f[s]);
+      }
+      EXPECT_NEAR(F.x() / -T, 1.0, 1e-13) << "h " << h;
+      EXPECT_NEAR(F.y(), 0.0, 1e-13 * T);
+      EXPECT_NEAR(F.z(), 0.0, 1e-13 * T);
+      EXPECT_NEAR(M.x() / (sense * Q), 1.0, 1e-13) << "h " << h;
+    }
+    // On the finest grid each cell's force is the continuous distribution's at its centre,
+    // within the sampling's error (the renormalisation tends to one).
+    if (h == 0.0025) {
+      disk.sense = 1;
+      const fv::DiskForce force(mesh, disk);
+      std::vector<Eigen::Vector3d> f(static_cast<std::size_t>(mesh.cells()),
+                                     Eigen::Vector3d::Zero());
+      force.apply(T, Q, f);
+      double worst = 0;
+      for (int c : force.cells()) {
+        const Eigen::Vector3d exact = hough_ordway(disk, T, Q, mesh.centre(c));
+        const double peak =
+            105 * T /
+            (8 * std::numbers::pi * disk.thickness * (disk.radius - disk.hub_radius) *
+             (3 * disk.hub_radius + 4 * disk.radius));
+        worst = std::max(worst, (f[static_cast<std::size_t>(c)] - exact).norm() / peak);
+      }
+      EXPECT_LT(worst, 0.03) << "the sampled distribution differs from the continuous one";
+    }
+  }
+}
+
+TEST(DiskForce, MeasuresTheDiskSpeedAndNamesADiskOffTheGrid) {
+  const auto grid = box(0.005);
+  const fv::Mesh mesh(grid);
+  PropellerDisk disk;
+  disk.axis = Eigen::Vector3d(1, 0, 0);
+  disk.radius = 0.05;
+  disk.hub_radius = 0.01;
+  const fv::DiskForce force(mesh, disk);
+  fv::VectorField U(mesh, "U");
+  for (int c = 0; c < mesh.cells(); ++c) {
+    const auto s = static_cast<std::size_t>(c);
+    U.c[0].cells[s] = 1.54;
+    U.c[1].cells[s] = 0.3;
+    U.c[2].cells[s] = -0.2;
+  }
+  EXPECT_NEAR(force.disk_speed(U), 1.54, 1e-12);  // a sum's round-off
+  // Candidates: only the cells with y > 0 carry the disk.
+  std::vector<char> upper(static_cast<std::size_t>(mesh.cells()), 0);
+  for (int c = 0; c < mesh.cells(); ++c)
+    upper[static_cast<std::size_t>(c)] = mesh.centre(c).y() > 0;
+  const fv::DiskForce half(mesh, disk, upper);
+  EXPECT_LT(half.cells().size(), force.cells().size());
+  for (int c : half.cells()) EXPECT_GT(mesh.centre(c).y(), 0);
+  auto away = disk;
+  away.centre = Eigen::Vector3d(1, 0, 0);
+  try {
+    const fv::DiskForce none(mesh, away);
+    FAIL() << "a disk off the grid was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("off the grid"), std::string::npos) << e.what();
+  }
 }
