@@ -107,6 +107,31 @@ OpenWaterPoint OpenWaterTable::at(double J, bool* clamped) const {
   return {J, a.KT + w * (b.KT - a.KT), a.KQ + w * (b.KQ - a.KQ)};
 }
 
+OperatingPoint operating_point(const std::function<OpenWaterPoint(double)>& curve, double n,
+                               double D, double disk_speed) {
+  if (!(D > 0) || !std::isfinite(n) || !std::isfinite(disk_speed))
+    throw std::invalid_argument(
+        fmt::format("propeller operating point: diameter {} m, {} rev/s and disk speed {} m/s", D,
+                    n, disk_speed));
+  OperatingPoint op;
+  const double nd = std::abs(n) * D;
+  if (nd == 0) return op;
+  double J = 0;
+  if (disk_speed > 0) {
+    const double J0 = disk_speed / nd;
+    const double T0 = curve(J0).KT * nd * nd * D * D;
+    const double induced = T0 / (2 * disk_speed * 0.25 * std::numbers::pi * D * D);
+    J = std::max(0.0, (disk_speed - induced) / nd);
+  }
+  const auto k = curve(J);
+  op.J = J;
+  op.KT = k.KT;
+  op.KQ = k.KQ;
+  op.thrust = k.KT * nd * nd * D * D;
+  op.torque = k.KQ * nd * nd * D * D * D;
+  return op;
+}
+
 Eigen::Vector3d hough_ordway(const PropellerDisk& disk, double T, double Q,
                              const Eigen::Vector3d& x) {
   const double RP = disk.radius, RH = disk.hub_radius, delta = disk.thickness;

@@ -7,7 +7,7 @@
 //   - the Hough-Ordway disk's force, integrated over the disk by quadrature in r (the code
 //     evaluated point by point), against the thrust and torque it was given, and its directions
 //     (thrown aft; the torque on the fluid along +axis for a right-handed turn);
-//   - the table's interpolation and its errors;
+//   - the table's interpolation and its errors; the operating point worked by hand;
 //   - the disk on a grid (fv::DiskForce): the fluid gets exactly the thrust and torque on
 //     coarse and fine grids, each cell's force tends to the continuous distribution, and the
 //     disk speed of a uniform stream is its axial component.
@@ -79,6 +79,30 @@ TEST(OpenWaterTable, InterpolatesLinearlyHoldsTheEndsAndNamesABadPoint) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("point 3"), std::string::npos) << e.what();
   }
+}
+
+TEST(OperatingPoint, TakesTheDisksOwnInductionOffOnceAndHandlesRestAndBollard) {
+  const OpenWaterTable table({{0.0, 0.40, 0.060}, {1.0, 0.0, 0.020}});
+  const auto curve = [&](double J) { return table.at(J); };
+  const double n = 25, D = 0.14, ud = 1.4;  // 1500 rpm
+  const auto op = operating_point(curve, n, D, ud);
+  // By hand: J0 = 0.4, KT 0.24, T0 = 0.24 n^2 D^4, u_i = T0 / (2 ud pi D^2 / 4).
+  const double T0 = 0.24 * n * n * std::pow(D, 4);
+  const double ui = T0 / (2 * ud * std::numbers::pi * D * D / 4);
+  const double J = (ud - ui) / (n * D);
+  EXPECT_NEAR(op.J, J, 1e-15);
+  EXPECT_NEAR(op.KT, 0.4 * (1 - J), 1e-15);
+  EXPECT_NEAR(op.KQ, 0.06 - 0.04 * J, 1e-15);
+  EXPECT_DOUBLE_EQ(op.thrust, op.KT * n * n * std::pow(D, 4));
+  EXPECT_DOUBLE_EQ(op.torque, op.KQ * n * n * std::pow(D, 5));
+  EXPECT_LT(op.J, ud / (n * D));  // the induction lowers J, raising the thrust
+  // The sense of rotation does not change the magnitudes.
+  EXPECT_EQ(operating_point(curve, -n, D, ud).thrust, op.thrust);
+  // At rest nothing; against the flow or still water the bollard point.
+  EXPECT_EQ(operating_point(curve, 0, D, ud).thrust, 0);
+  EXPECT_EQ(operating_point(curve, n, D, -0.3).J, 0);
+  EXPECT_NEAR(operating_point(curve, n, D, 0).thrust, 0.4 * n * n * std::pow(D, 4), 1e-15);
+  EXPECT_THROW((void)operating_point(curve, n, 0, ud), std::invalid_argument);
 }
 
 namespace {

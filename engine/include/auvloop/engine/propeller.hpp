@@ -21,6 +21,7 @@
 // -Q sense n_hat (the hull's counter-torque to the motor).
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -57,6 +58,19 @@ class OpenWaterTable {
  private:
   std::vector<OpenWaterPoint> points_;
 };
+
+// The operating point from the disk's inflow (OpenFOAM's propellerDisk, propeller.md section 3):
+// with u_d the mean axial speed over the disk (fv::DiskForce::disk_speed), J0 = u_d / (n D) and
+// T0 = KT(J0) n^2 D^4, the disk's own induction u_i = T0 / (2 u_d A) (A = pi D^2 / 4, light
+// loading) is taken off once: J = (u_d - u_i) / (n D), T = KT(J) n^2 D^4, Q = KQ(J) n^2 D^5 (per
+// unit density; n in rev/s, its magnitude; the caller gives the disk the sense of n). With
+// n = 0 nothing is produced; with u_d <= 0 the point is the bollard pull (J = 0).
+struct OperatingPoint {
+  double J = 0, KT = 0, KQ = 0;
+  double thrust = 0, torque = 0;  // m^4/s^2, m^5/s^2
+};
+OperatingPoint operating_point(const std::function<OpenWaterPoint(double)>& curve, double n,
+                               double D, double disk_speed);
 
 // The disk of step 2 (m). Invariants (checked by hough_ordway): 0 <= hub_radius < radius,
 // thickness > 0, |axis| = 1.
