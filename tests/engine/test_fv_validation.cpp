@@ -89,6 +89,11 @@ TEST(FV_SUITE, RemusOverset) {
 TEST(FV_SUITE, RemusOversetSst) {
   run("remus-overset-sst");
 }
+// The propeller's body-force disk in a uniform stream (quick: core cubes of R / 5, 74,000 cells,
+// about 50 s; full: R / 10, 288,000 cells, about 7 minutes).
+TEST(FV_SUITE, ActuatorDisk) {
+  run("actuator-disk");
+}
 TEST(FV_SUITE, SchaeferTurek2d2Shedding) {
   run("schaefer-turek-2d2");
 }

@@ -251,6 +251,30 @@ struct RemusOversetResult {
 };
 RemusOversetResult remus_overset(const RemusOversetRun& run);
 
+// The propeller's body-force disk in a uniform stream against annular momentum theory
+// (actuator_disk.cpp states the set-up): the disk-mean axial speed the solver gives and the one
+// the theory gives for the same loading.
+struct ActuatorDiskCase {
+  double speed = 1.54;                      // m/s
+  double nu = 1e-6;                         // m^2/s
+  double thrust = 3.86 / 1025;              // m^4/s^2 (Prestero's 3.86 N in sea water)
+  double radius = 0.07, hub_radius = 0.02;  // m
+  double cell = 0.007;                      // the core's cube side (m); the disk is two cells thick
+  double upstream = 0.7, downstream = 1.4, half_width = 0.5;  // m
+  double growth = 1.15;
+  int max_iterations = 2000;
+};
+struct ActuatorDiskResult {
+  int cells = 0, disk_cells = 0, iterations = 0;
+  double disk_speed = 0;    // the solver's (m/s): the disk cells' volume-mean axial velocity
+  double face_speed = 0;    // the mid-plane faces' flux over their area (m/s)
+  double theory_speed = 0;  // annular momentum theory's (m/s)
+  double light_loading_induction = 0;  // T / (2 u_d A), the operating point's correction (m/s)
+  double last_change = 0;              // of the disk speed over the last iteration (m/s)
+  double seconds = 0;
+};
+ActuatorDiskResult actuator_disk(const ActuatorDiskCase& c);
+
 // Schaefer-Turek 2D-2 (Re = 100, periodic shedding) from rest to end_time with BDF2 at fixed dt;
 // St, cD max and cL max over the last `measured_periods` periods of cL (upward crossings of its
 // mean). periods = 0 when fewer than measured_periods + 2 periods developed (no shedding).
