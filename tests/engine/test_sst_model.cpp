@@ -236,16 +236,20 @@ Couette couette(int n) {
   r.force_bottom = fv::patch_force(flow, "bottom").total().x() / tau_area - 1;
   return r;
 }
-}  // namespace
-
-TEST(SstBound, RaisesACellBelowTheFloorToItsNeighboursMeanAndLeavesTheOthers) {
-  // 4 x 3 unit cells, one deep (front and back empty): cell i + 4 j at (i + 0.5, j + 0.5).
+// 4 x 3 unit cells, one deep (front and back empty), walls round: the positivity tests' grid.
+mesher::Grid unit_box_4x3() {
   mesher::BoxPatches patches;
   patches.names = {"left", "right", "bottom", "top", "front", "back"};
   patches.types = {mesher::PatchType::wall, mesher::PatchType::wall,  mesher::PatchType::wall,
                    mesher::PatchType::wall, mesher::PatchType::empty, mesher::PatchType::empty};
-  const auto grid = mesher::cartesian_box(mesher::graded_nodes(0, 4, 4),
-                                          mesher::graded_nodes(0, 3, 3), {0, 1}, patches);
+  return mesher::cartesian_box(mesher::graded_nodes(0, 4, 4), mesher::graded_nodes(0, 3, 3), {0, 1},
+                               patches);
+}
+}  // namespace
+
+TEST(SstBound, RaisesACellBelowTheFloorToItsNeighboursMeanAndLeavesTheOthers) {
+  // 4 x 3 unit cells, one deep (front and back empty): cell i + 4 j at (i + 0.5, j + 0.5).
+  const auto grid = unit_box_4x3();
   const fv::Mesh mesh(grid);
   ASSERT_EQ(mesh.cells(), 12);
   const auto at = [&](double x, double y) {
@@ -284,12 +288,7 @@ TEST(SstBound, RaisesACellBelowTheFloorToItsNeighboursMeanAndLeavesTheOthers) {
 
 TEST(SstSinkReference, IsTheCellsValueExceptAtALocalMinimumWhereItIsTheNeighboursMean) {
   // 4 x 3 unit cells, one deep: every internal face's Laplacian weight |S|^2 / (S . d) is 1.
-  mesher::BoxPatches patches;
-  patches.names = {"left", "right", "bottom", "top", "front", "back"};
-  patches.types = {mesher::PatchType::wall, mesher::PatchType::wall,  mesher::PatchType::wall,
-                   mesher::PatchType::wall, mesher::PatchType::empty, mesher::PatchType::empty};
-  const auto grid = mesher::cartesian_box(mesher::graded_nodes(0, 4, 4),
-                                          mesher::graded_nodes(0, 3, 3), {0, 1}, patches);
+  const auto grid = unit_box_4x3();
   const fv::Mesh mesh(grid);
   const auto at = [&](double x, double y) {
     for (int c = 0; c < mesh.cells(); ++c)
