@@ -174,13 +174,15 @@ TEST(HoughOrdway, IsZeroOutsideTheDiskAndRejectsABadDisk) {
 }
 
 namespace {
-// A box of cubes of side h round the origin: x in [-0.01, 0.01], y and z in [-0.1, 0.1] (m).
-mesher::Grid box(double h) {
+// A box of cubes of side h round the origin: x in [-half_length, half_length], y and z in
+// [-0.1, 0.1] (m).
+mesher::Grid box(double h, double half_length = 0.01) {
   mesher::BoxPatches patches;
   patches.names = {"x0", "x1", "y0", "y1", "z0", "z1"};
   patches.types.fill(mesher::PatchType::wall);
   const auto n = [h](double a, double b) { return static_cast<int>(std::lround((b - a) / h)); };
-  return mesher::cartesian_box(mesher::graded_nodes(-0.01, 0.01, n(-0.01, 0.01)),
+  const double a = half_length;
+  return mesher::cartesian_box(mesher::graded_nodes(-a, a, n(-a, a)),
                                mesher::graded_nodes(-0.1, 0.1, n(-0.1, 0.1)),
                                mesher::graded_nodes(-0.1, 0.1, n(-0.1, 0.1)), patches);
 }
@@ -264,5 +266,51 @@ TEST(DiskForce, MeasuresTheDiskSpeedAndNamesADiskOffTheGrid) {
     FAIL() << "a disk off the grid was accepted";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("off the grid"), std::string::npos) << e.what();
+  }
+}
+
+TEST(DiskForce, SamplesTheInflowOnAPlaneAheadRelativeToTheMovingGrid) {
+  const auto grid = box(0.005, 0.05);
+  const fv::Mesh mesh(grid);
+  PropellerDisk disk;
+  disk.radius = 0.05;
+  disk.hub_radius = 0.01;
+  const double offset = 0.02;  // the plane at x = 0.02: cell centres at 0.0175 and 0.0225
+  const fv::DiskForce force(mesh, disk, {}, offset);
+  // The water: u = a + b x (the wake's recovery ahead of the disk), plus a side flow.
+  const double a = -1.2, b = 5.0;
+  fv::VectorField U(mesh, "U");
+  for (int c = 0; c < mesh.cells(); ++c) {
+    const auto s = static_cast<std::size_t>(c);
+    U.c[0].cells[s] = a + b * mesh.centre(c).x();
+    U.c[1].cells[s] = 0.3;
+  }
+  ASSERT_FALSE(force.inflow_cells().empty());
+  for (int c : force.inflow_cells()) {
+    const Eigen::Vector3d x = mesh.centre(c);
+    EXPECT_NEAR(std::abs(x.x() - offset), 0.0025, 1e-12);
+    EXPECT_LE(std::hypot(x.y(), x.z()), disk.radius);
+  }
+  // The plane's two layers straddle it symmetrically: the mean of the linear u is u(0.02).
+  EXPECT_NEAR(force.inflow_speed(U), -(a + b * offset), 1e-12);
+  // The grid moving forward at 1.54 m/s and turning about its z axis (w_x = -r y, whose mean
+  // over the plane's symmetric cells vanishes): the water meets the disk 1.54 m/s faster.
+  fv::FrameMotion motion;
+  motion.velocity = Eigen::Vector3d(1.54, 0.1, 0);
+  motion.rate = Eigen::Vector3d(0, 0, 0.7);
+  EXPECT_NEAR(force.inflow_speed(U, motion), 1.54 - (a + b * offset), 1e-12);
+  // Offset 0: the disk's own cells (the mean of u over |x| <= 0.005 is u(0) = a).
+  const fv::DiskForce at_disk(mesh, disk);
+  EXPECT_EQ(at_disk.inflow_cells(), at_disk.cells());
+  EXPECT_NEAR(at_disk.inflow_speed(U), -a, 1e-12);
+  EXPECT_NEAR(at_disk.inflow_speed(U), -at_disk.disk_speed(U), 1e-12);
+  // A plane off the grid and a negative offset are named.
+  for (double bad : {1.0, -0.01}) {
+    try {
+      const fv::DiskForce none(mesh, disk, {}, bad);
+      FAIL() << "offset " << bad << " was accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("inflow plane"), std::string::npos) << e.what();
+    }
   }
 }

@@ -9,13 +9,18 @@
 
 namespace auvloop::engine::fv {
 
-DiskForce::DiskForce(const Mesh& mesh, const PropellerDisk& disk, std::span<const char> candidates)
-    : disk_(disk) {
+DiskForce::DiskForce(const Mesh& mesh, const PropellerDisk& disk, std::span<const char> candidates,
+                     double inflow_offset)
+    : disk_(disk), inflow_offset_(inflow_offset) {
   // The disk's invariants, checked where they are defined (a point at the centre is outside).
   (void)hough_ordway(disk_, 0, 0, disk_.centre);
   if (!candidates.empty() && candidates.size() != static_cast<std::size_t>(mesh.cells()))
     throw std::invalid_argument(fmt::format("propeller disk: {} candidate flags for {} cells",
                                             candidates.size(), mesh.cells()));
+  if (!(inflow_offset >= 0) || !std::isfinite(inflow_offset))
+    throw std::invalid_argument(fmt::format(
+        "propeller disk: the inflow plane's offset must be >= 0 m ahead of the disk, got {}",
+        inflow_offset));
   // 1.
   const double RP = disk_.radius, RH = disk_.hub_radius, rh = RH / RP;
   double Wx = 0, Wt = 0;
@@ -59,6 +64,29 @@ DiskForce::DiskForce(const Mesh& mesh, const PropellerDisk& disk, std::span<cons
         disk_.centre.x(), disk_.centre.y(), disk_.centre.z(), RP, disk_.thickness, cells_.size()));
   for (auto& a : axial_) a /= Wx;
   for (auto& t : tangential_) t /= Wt;
+  // 4.
+  if (inflow_offset == 0) {
+    inflow_cells_ = cells_;
+    inflow_volume_ = cell_volume_;
+    for (int c : cells_) inflow_centre_.push_back(mesh.centre(c));
+  } else {
+    const Eigen::Vector3d plane = disk_.centre + inflow_offset * disk_.axis;
+    for (int c = 0; c < mesh.cells(); ++c) {
+      if (!candidates.empty() && candidates[static_cast<std::size_t>(c)] == 0) continue;
+      const Eigen::Vector3d d = mesh.centre(c) - plane;
+      const double axial = d.dot(disk_.axis);
+      if (std::abs(axial) > 0.5 * disk_.thickness || (d - axial * disk_.axis).norm() > RP) continue;
+      inflow_cells_.push_back(c);
+      inflow_volume_.push_back(mesh.volume(c));
+      inflow_centre_.push_back(mesh.centre(c));
+    }
+    if (inflow_cells_.empty())
+      throw std::invalid_argument(fmt::format(
+          "propeller disk: no cell centre lies on its inflow plane {:.4g} m ahead of it, within "
+          "{:.4g} m of the plane (half the disk's thickness) and {:.4g} m of the axis",
+          inflow_offset, 0.5 * disk_.thickness, RP));
+  }
+  for (double V : inflow_volume_) inflow_total_ += V;
 }
 
 void DiskForce::apply(double T, double Q, std::vector<Eigen::Vector3d>& body_force) const {
@@ -72,6 +100,14 @@ double DiskForce::disk_speed(const VectorField& U) const {
   for (std::size_t k = 0; k < cells_.size(); ++k)
     sum += cell_volume_[k] * U.cell(cells_[k]).dot(disk_.axis);
   return sum / volume_;
+}
+
+double DiskForce::inflow_speed(const VectorField& U, const FrameMotion& motion) const {
+  double sum = 0;  // 4.
+  for (std::size_t k = 0; k < inflow_cells_.size(); ++k)
+    sum += inflow_volume_[k] *
+           (motion.at(inflow_centre_[k]) - U.cell(inflow_cells_[k])).dot(disk_.axis);
+  return sum / inflow_total_;
 }
 
 }  // namespace auvloop::engine::fv

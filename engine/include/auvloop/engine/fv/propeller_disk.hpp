@@ -19,7 +19,15 @@
 //      the moment normal to the axis of a disk sampled asymmetrically;
 //   3. disk_speed(U): the volume-weighted mean of n_hat . U over the disk cells (OpenFOAM's
 //      propellerDisk; the inflow the advance ratio is taken from, before its own induction is
-//      removed by the caller).
+//      removed by the caller);
+//   4. the inflow plane (the paper's way to J; STAR-CCM+'s "inflow velocity plane"): with
+//      inflow_offset > 0, the candidate cells whose centre lies within half the disk's thickness
+//      of the plane inflow_offset ahead of the disk's centre along n_hat, and within the tip
+//      radius of the axis (the hub's radius included: the plane is a whole disk, and cells
+//      exist only in the fluid); inflow_speed(U, motion) the volume-weighted mean of
+//      n_hat . (w(x_c) - U_c) over them, the speed at which the water meets the propeller, with
+//      w the grid velocity of the axes the mesh is at rest in (motion.hpp; zero at rest). With
+//      inflow_offset 0 the same mean over the disk cells (the induction then included).
 // Sums in ascending cell order: the same bits for any number of threads.
 #pragma once
 
@@ -31,22 +39,29 @@
 
 #include "auvloop/engine/fv/field.hpp"
 #include "auvloop/engine/fv/mesh.hpp"
+#include "auvloop/engine/fv/motion.hpp"
 #include "auvloop/engine/propeller.hpp"
 
 namespace auvloop::engine::fv {
 
 class DiskForce {
  public:
-  // candidates: one flag per cell (empty: every cell). Throws std::invalid_argument on a bad
-  // disk (propeller.hpp's invariants) or when no candidate cell centre lies in the disk (the
-  // disk thinner than the grid's cells there, or not where the grid is).
-  DiskForce(const Mesh& mesh, const PropellerDisk& disk, std::span<const char> candidates = {});
+  // candidates: one flag per cell (empty: every cell); inflow_offset (m, >= 0) as in step 4.
+  // Throws std::invalid_argument on a bad disk (propeller.hpp's invariants), a negative offset,
+  // or when no candidate cell centre lies in the disk or on the inflow plane (the disk thinner
+  // than the grid's cells there, or not where the grid is).
+  DiskForce(const Mesh& mesh, const PropellerDisk& disk, std::span<const char> candidates = {},
+            double inflow_offset = 0);
 
   // Step 2: sets the disk cells' entries of body_force (sized to the cells, others untouched)
   // for thrust T (m^4/s^2) and torque Q (m^5/s^2) per unit density.
   void apply(double T, double Q, std::vector<Eigen::Vector3d>& body_force) const;
   // Step 3 (m/s).
   [[nodiscard]] double disk_speed(const VectorField& U) const;
+  // Step 4 (m/s).
+  [[nodiscard]] double inflow_speed(const VectorField& U, const FrameMotion& motion = {}) const;
+  [[nodiscard]] const std::vector<int>& inflow_cells() const { return inflow_cells_; }
+  [[nodiscard]] double inflow_offset() const { return inflow_offset_; }
 
   [[nodiscard]] const std::vector<int>& cells() const { return cells_; }
   [[nodiscard]] double volume() const { return volume_; }  // of the disk cells (m^3)
@@ -59,6 +74,11 @@ class DiskForce {
   std::vector<Eigen::Vector3d> swirl_;      // n_hat x r_hat_c
   std::vector<double> cell_volume_;
   double volume_ = 0;
+  double inflow_offset_ = 0;
+  std::vector<int> inflow_cells_;  // the plane's cells (step 4), the disk's with offset 0
+  std::vector<double> inflow_volume_;
+  std::vector<Eigen::Vector3d> inflow_centre_;
+  double inflow_total_ = 0;
 };
 
 }  // namespace auvloop::engine::fv
