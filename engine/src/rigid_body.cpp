@@ -40,4 +40,30 @@ KinematicRates kinematic_rates(const BodyState& s) {
   return k;
 }
 
+Matrix6d rigid_body_mass(double m, const Eigen::Vector3d& r_g, const Eigen::Matrix3d& I_o) {
+  Eigen::Matrix3d S;  // S(r_g) a = r_g x a
+  S << 0, -r_g.z(), r_g.y(), r_g.z(), 0, -r_g.x(), -r_g.y(), r_g.x(), 0;
+  Matrix6d M;
+  M << m * Eigen::Matrix3d::Identity(), -m * S, m * S, I_o;
+  return M;
+}
+
+Vector6d coriolis(const Matrix6d& M, const Vector6d& nu) {
+  const Vector6d momentum = M * nu;
+  const Eigen::Vector3d v = nu.head<3>(), omega = nu.tail<3>();
+  const Eigen::Vector3d p1 = momentum.head<3>(), p2 = momentum.tail<3>();
+  Vector6d c;
+  c << omega.cross(p1), v.cross(p1) + omega.cross(p2);
+  return c;
+}
+
+Vector6d gravity_and_buoyancy(double W, double B, const Eigen::Vector3d& r_g,
+                              const Eigen::Vector3d& r_b, const Eigen::Quaterniond& q) {
+  const Eigen::Vector3d down = q.conjugate() * Eigen::Vector3d::UnitZ();  // e_z of NED, body axes
+  const Eigen::Vector3d fg = W * down, fb = -B * down;
+  Vector6d tau;
+  tau << fg + fb, r_g.cross(fg) + r_b.cross(fb);
+  return tau;
+}
+
 }  // namespace auvloop::engine

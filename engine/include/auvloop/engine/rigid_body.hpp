@@ -48,6 +48,24 @@ struct KinematicRates {
 };
 KinematicRates kinematic_rates(const BodyState& s);
 
+// Fossen (2011) eq. 3.44: the rigid-body mass matrix about the body origin o of a body of mass m
+// (kg) with its centre of gravity at r_g (m, from o) and the inertia tensor I_o (kg m^2, about
+// o): [[m 1, -m S(r_g)], [m S(r_g), I_o]], S(a) b = a x b.
+Matrix6d rigid_body_mass(double m, const Eigen::Vector3d& r_g, const Eigen::Matrix3d& I_o);
+
+// The Coriolis and centripetal term C(nu) nu of a body whose motion has the kinetic energy
+// nu^T M nu / 2 (M symmetric: rigid body, or rigid body and added mass), in Kirchhoff's form
+// (Fossen 2011, theorem 3.2): with the momenta (p1, p2) = M nu and nu = (v, omega),
+// C(nu) nu = (omega x p1, v x p1 + omega x p2), so that M nu' + C(nu) nu = tau. It does no work:
+// nu . C(nu) nu = 0.
+Vector6d coriolis(const Matrix6d& M, const Vector6d& nu);
+
+// The load of weight W and buoyancy B (N) on the body (N, N m about the origin, body axes) at the
+// attitude q (body -> NED): the weight W R^T e_z at r_g and the buoyancy -B R^T e_z at r_b
+// (Fossen's -g(eta), eq. 4.6).
+Vector6d gravity_and_buoyancy(double W, double B, const Eigen::Vector3d& r_g,
+                              const Eigen::Vector3d& r_b, const Eigen::Quaterniond& q);
+
 // One classical fourth-order Runge-Kutta step of the full state under body accelerations
 // nu' = f(state). The quaternion is renormalised after the step (its drift is O(dt^5)).
 template <class Acceleration>
