@@ -52,6 +52,7 @@ void Pimple::set_motion(std::vector<FrameMotion> motion) {
     }
   }
   motion_ = std::move(motion);
+  if (in_step_) apply_motion();  // the motion_correct hook: for the next outer iteration
 }
 
 FrameMotion placed_motion(const FrameMotion& body, const Eigen::Isometry3d& placement,

@@ -4,7 +4,9 @@
 //   2. for each outer iteration: refresh slip values, assemble momentum with the lagged flux
 //      and pressure, solve the predictor (momentum.cpp);
 //   3. then the pressure correctors (pressure.cpp), the last outer iteration unrelaxed, and the
-//      force that balances the corrected velocity, for the next step's predictor;
+//      force that balances the corrected velocity, for the next step's predictor; a turbulence
+//      model's correct(); when another outer iteration follows, the motion_correct hook (the
+//      6-DOF coupling), whose new motion applies at once (motion.cpp);
 //   4. Courant number, continuity error, divergence checks; on failure restore the last good
 //      fields and throw DivergenceError naming where and when.
 #include "auvloop/engine/fv/pimple.hpp"
@@ -226,6 +228,13 @@ StepReport Pimple::step() {
   good_.phi_old = phi_old_;
   good_.predictor_force = predictor_force_;
   apply_motion();  // the grids' motion at the new time level: grid flux and boundary values
+  struct InStep {  // set_motion within the step applies the motion at once
+    bool& flag;
+    explicit InStep(bool& f) : flag(f) { flag = true; }
+    ~InStep() { flag = false; }
+    InStep(const InStep&) = delete;
+    InStep& operator=(const InStep&) = delete;
+  } in_step(in_step_);
   if (turbulence_) {
     turbulence_->save();
     turbulence_->begin_step();
@@ -280,6 +289,7 @@ StepReport Pimple::step() {
       r.outer_iterations = outer;
       // Converged outer loop: momentum's initial residual of this iteration is small enough.
       if (outer > 1 && r.outer_residual < settings_.outer_tolerance) break;
+      if (motion_correct && outer < settings_.outer_iterations) motion_correct(outer);
     }
     const auto t0 = std::chrono::steady_clock::now();
     const auto [co, cell] = courant(mesh_, relative_flux(), dt_);

@@ -25,23 +25,10 @@
 #include "auvloop/engine/fv/pimple.hpp"
 #include "auvloop/engine/validation.hpp"
 #include "auvloop/mesher/composite_grid.hpp"
+#include "coupled_pair.hpp"
 #include "signal.hpp"
 
 namespace auvloop::engine::validation {
-
-namespace {
-// A cylinder pair (O-grid over a background) assembled, merged and coupled.
-struct CoupledPair {
-  mesher::CompositeSystem system;
-  fv::Mesh mesh;
-  fv::Overset overset;
-  explicit CoupledPair(const mesher::CylinderOverset& pair)
-      : system(mesher::composite_system(
-            {{&pair.cylinder, 1, &pair.solid}, {&pair.background, 0, nullptr}})),
-        mesh(system.composite.grid),
-        overset(mesh, system.stencils, system.composite.cell_offset) {}
-};
-}  // namespace
 
 RotatingRestResult rotating_frame_at_rest(const ChannelGrid& g, double rate, double dt, int steps) {
   const auto t0 = std::chrono::steady_clock::now();

@@ -173,6 +173,28 @@ UnconfinedCylinderResult unconfined_cylinder(
     const mesher::UnconfinedCylinderSpec& g, bool towed, double dt, double end_time,
     int measured_periods, fv::Convection convection = fv::Convection::van_leer_skew);
 
+// released-cylinder (moving_grids.cpp; issue 18, item 3): the 6-DOF coupling (engine::Dfbi
+// through Pimple::motion_correct) against potential flow.
+//   1. the unconfined cylinder's grids (g), water at rest (nu), the cylinder free in surge and
+//      sway, every grid moving with it; its mass m = mass_ratio m_a with m_a = pi R^2 b the
+//      displaced volume of potential flow's added mass (per unit density; b the grids'
+//      thickness), from rest under a constant force F = (m + m_a) 1 m/s^2 along x;
+//   2. the coupling's added-mass estimate estimate_ratio m_a in surge and sway, its relaxation
+//      relax, one correction after every outer iteration but the last; BDF2 after an Euler
+//      step, for body and flow alike;
+//   3. per step the acceleration u' against potential flow's F / (m + m_a) = 1 m/s^2 (an
+//      unbounded fluid: the far field extent / 2 diameters away changes m_a by about
+//      (R / far)^2), while the boundary layer's share, about 2 sqrt(nu t) / R, stays small;
+//      and the last correction's change of u' (the coupling's residual).
+struct ReleasedCylinderResult {
+  int cells = 0, steps = 0;
+  double seconds = 0;
+  std::vector<double> t, acceleration, u, change;  // u' (m/s^2), u (m/s), |a_k - a_{k-1}|
+};
+ReleasedCylinderResult released_cylinder(const mesher::UnconfinedCylinderSpec& g, double mass_ratio,
+                                         double estimate_ratio, double relax, double nu, double dt,
+                                         int steps, int outer_iterations);
+
 // pitching-foil (pitching_foil.cpp): a NACA 0012 of chord c = 1 m in a stream U = 1 m/s at
 // Re = U c / nu = 1000, pitching about its quarter chord as theta(t) = amplitude cos(omega t)
 // (rad, counter-clockwise about +z: nose down for positive theta) from the uniform stream at

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
@@ -173,6 +174,13 @@ class Pimple {
   // slip patches on a moving grid, or a motion out of the plane of a 2D grid.
   void set_motion(std::vector<FrameMotion> motion);
   [[nodiscard]] const std::vector<FrameMotion>& motion() const { return motion_; }
+  // Hook "motion_correct" (the 6-DOF coupling, DFBI: engine/dfbi.hpp): when set, called after
+  // every outer iteration that another follows (its correctors and turbulence done) with that
+  // iteration's number (1-based). It may read the loads (forces.hpp) and call set_motion, which
+  // within a step takes effect at once (the grid flux, the wall velocities and the far field's
+  // faces of the new motion) for the next outer iteration. A step that diverges restores the
+  // fields, not the motion: the driver keeps its own body state.
+  std::function<void(int outer)> motion_correct;
   // A no-slip wall on its moving grid: U = the grid velocity at every face (zero at rest), at
   // the new time level of every step.
   void wall(const std::string& patch);
@@ -390,7 +398,8 @@ class Pimple {
     return overset_ == nullptr ? 0 : overset_->component_of(c);
   }
   std::vector<FrameMotion> motion_{FrameMotion{}};
-  bool moving_ = false;  // some grid has moved since construction: the grid flux is kept
+  bool moving_ = false;   // some grid has moved since construction: the grid flux is kept
+  bool in_step_ = false;  // within step(): set_motion applies the motion at once
   std::vector<Eigen::Vector3d> face_moment_;  // m_f of motion.hpp (m^3), built on first motion
   std::vector<double> phi_grid_, phi_rel_;
   std::vector<int> wall_patches_, far_field_patches_;
