@@ -164,4 +164,14 @@ Vector6d PresteroModel::acceleration(const Vector6d& nu, double phi, double thet
   return mass_lu_.solve(forces(nu, phi, theta, delta_r, delta_s, rpm));
 }
 
+Matrix6d prestero_added_mass(const PresteroCoefficients& c) {
+  Matrix6d A = Matrix6d::Zero();
+  A.diagonal() << -c.X_udot, -c.Y_vdot, -c.Z_wdot, -c.K_pdot, -c.M_qdot, -c.N_rdot;
+  A(1, 5) = -c.Y_rdot;
+  A(5, 1) = -c.N_vdot;
+  A(2, 4) = -c.Z_qdot;
+  A(4, 2) = -c.M_wdot;
+  return 0.5 * (A + A.transpose());
+}
+
 }  // namespace auvloop::engine

@@ -62,6 +62,22 @@ void VehicleOverset::orient() {
   overset_->set_orientation(std::move(orientation));
 }
 
+std::vector<Eigen::Isometry3d> VehicleOverset::component_axes() const {
+  std::vector<Eigen::Isometry3d> axes(static_cast<std::size_t>(overset_->components()),
+                                      Eigen::Isometry3d::Identity());
+  for (int k = 0; k < fins(); ++k) axes[static_cast<std::size_t>(fin_component(k))] = fin_axes(k);
+  return axes;
+}
+
+std::vector<std::vector<char>> VehicleOverset::cells_in_flow() const {
+  const auto& offset = composite_.cell_offset;
+  std::vector<std::vector<char>> in_flow(offset.size());
+  for (std::size_t g = 0; g < offset.size(); ++g)
+    for (int c = 0; c < composite_.cells_of(g); ++c)
+      in_flow[g].push_back(overset_->status(offset[g] + c) != mesher::CellStatus::hole);
+  return in_flow;
+}
+
 std::vector<FrameMotion> VehicleOverset::motions(const FrameMotion& body,
                                                  const std::vector<double>& rates) const {
   if (!rates.empty() && rates.size() != system_->fins.size())

@@ -79,16 +79,7 @@ RemusOversetResult remus_overset(const RemusOversetRun& run) {
   }
   // The wall distances at the fins' present axes, for the cells in the flow.
   const auto follow_walls = [&] {
-    std::vector<Eigen::Isometry3d> axes(static_cast<std::size_t>(sys.overset().components()),
-                                        Eigen::Isometry3d::Identity());
-    for (int k = 0; k < sys.fins(); ++k)
-      axes[static_cast<std::size_t>(fv::VehicleOverset::fin_component(k))] = sys.fin_axes(k);
-    const auto& offset = sys.composite().cell_offset;
-    std::vector<std::vector<char>> needed(offset.size());
-    for (std::size_t g = 0; g < offset.size(); ++g)
-      for (int c = 0; c < sys.composite().cells_of(g); ++c)
-        needed[g].push_back(sys.overset().status(offset[g] + c) != mesher::CellStatus::hole);
-    (void)walls->update(axes, needed);
+    (void)walls->update(sys.component_axes(), sys.cells_in_flow());
     sst->set_wall_distance(walls->composite());
   };
   fv::FrameMotion body;

@@ -51,6 +51,12 @@ struct PresteroCoefficients {
 // Reads [hydrodynamics] (model = "prestero2001"); problems go to the table's document.
 PresteroCoefficients read_prestero(input::Table hydrodynamics);
 
+// The added-mass matrix of the coefficients (kg, kg m, kg m^2; body axes about CB): minus the
+// acceleration derivatives, -X_udot ... -N_rdot on the diagonal and -Y_rdot, -N_vdot, -Z_qdot,
+// -M_wdot off it, made symmetric (the mean of a pair; the thesis prints equal pairs). The CFD
+// plant's coupling estimate (dfbi.hpp).
+Matrix6d prestero_added_mass(const PresteroCoefficients& c);
+
 // How the weight-buoyancy difference enters. REMUS 100 is 7 N positively buoyant (W = 299 N,
 // B = 306 N). With no depth control, that makes it rise; the Munk moment M_uw u w of the rising
 // body (about -5.5 N m) outweighs the metacentric restoring moment (z_g W = 5.9 N m at most), so it

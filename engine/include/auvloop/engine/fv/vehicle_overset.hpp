@@ -60,6 +60,11 @@ class VehicleOverset {
   [[nodiscard]] const mesher::Assembly& assembly() const { return assembly_; }
   // Fin k's axes in the body frame relative to where it was merged.
   [[nodiscard]] Eigen::Isometry3d fin_axes(int k) const;
+  // Every component's axes relative to where it was merged (fin k's fin_axes(k), the others
+  // the identity), and per component a flag per cell: in the flow (not a hole). What
+  // turbulence::WallDistances::update needs after set_fins.
+  [[nodiscard]] std::vector<Eigen::Isometry3d> component_axes() const;
+  [[nodiscard]] std::vector<std::vector<char>> cells_in_flow() const;
   // Step 2: rates (rad/s, one per fin; empty: fins at rest).
   [[nodiscard]] std::vector<FrameMotion> motions(const FrameMotion& body,
                                                  const std::vector<double>& rates) const;

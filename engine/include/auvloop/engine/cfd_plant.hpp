@@ -1,0 +1,111 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The CFD plant (issue 18): the vehicle's overset grid system in an unsteady RANS flow, its
+// propeller a body-force disk, its six degrees of freedom from the flow's loads (DFBI), behind
+// the same Plant interface as the derivative plant. One advance(actuators, dt), with the hooks of
+// ../shared/design (docs/cfd-plant.md states it whole):
+//   1. fins (grids_moved): each fin's deflection from (delta_r, delta_s) by the vehicle file's
+//      mixing (geometry::fin_deflection); when one changed, the mesher's incremental overset
+//      update and the wall distances of the cells in the flow; each fin grid turns at
+//      (new - old) / dt during the step;
+//   2. predictor: Dfbi::begin_step (BDF2, Euler on the flow's first step), every grid set to the
+//      iterate's motion (VehicleOverset::motions), the propeller's load from it (step 4);
+//   3. the flow's outer iterations (fv::Pimple::step); after each but the last
+//      (motion_correct): the loads, rho times the pressure and shear on every wall about the
+//      body origin (fv::wall_forces) plus the propeller's reaction, thrust T along its axis and
+//      torque -sense Q; the body corrected (Dfbi::correct, the added-mass estimate), the grids
+//      moved at once, the propeller's load renewed;
+//   4. propeller: V_a = the inflow plane's mean of n_hat . (w - U) (fv::DiskForce, the paper's
+//      way), J = V_a / (n D) (0 when the water comes from behind), KT and KQ from the curve,
+//      T = rho KT n^2 D^4 and Q = rho KQ n^2 D^5 spread over the disk's cells (Hough-Ordway);
+//   5. accept: the body takes the iterate the last outer iteration moved with; the report.
+// A diverging flow, an orphan in the overset update or a runaway motion return a PlantFailure
+// naming it; state() is then the last good state and the flow keeps its last good fields.
+// Results are bitwise the same for any number of threads (the solver's reductions are ordered).
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "auvloop/engine/dfbi.hpp"
+#include "auvloop/engine/fv/forces.hpp"
+#include "auvloop/engine/fv/pimple.hpp"
+#include "auvloop/engine/plant.hpp"
+#include "auvloop/engine/propeller.hpp"
+#include "auvloop/geometry/vehicle.hpp"
+
+namespace auvloop::engine {
+
+struct CfdPlantSettings {
+  std::string mesh = "coarse";  // mesher preset: coarse, medium, fine
+  int outer_iterations = 5;     // the paper's
+  bool sst = true;              // SST k-omega; else laminar
+  // Water: kinematic viscosity (m^2/s; sea water at 15 C) and the free stream's turbulence for
+  // SST (intensity of `reference_speed`, eddy-viscosity ratio).
+  double nu = 1.19e-6;
+  double reference_speed = 1.54;  // m/s
+  double intensity = 0.01, viscosity_ratio = 10;
+  // The flow's numerics, as remus-overset-sst runs them (docs/overset-flow.md).
+  fv::Convection convection = fv::Convection::linear_upwind_limited;
+  // Degrees of freedom (u v w p q r): all, or DfbiBody::horizontal.
+  std::array<bool, 6> free{true, true, true, true, true, true};
+  double relax = 1.0;  // of the body's acceleration in the coupling
+  // The coupling's added-mass estimate (kg, kg m, kg m^2; body axes about the origin), e.g.
+  // prestero_added_mass(); zero for plain relaxed coupling.
+  Matrix6d added_mass = Matrix6d::Zero();
+  // Buoyancy: true takes B = W (horizontal-plane manoeuvres without depth control, as the
+  // derivative plant's default); false the vehicle file's.
+  bool neutral_buoyancy = true;
+  // The propeller's open-water curve (required when rpm > 0) and its inflow plane's offset
+  // ahead of the disk (m; < 0: a quarter of the diameter).
+  std::function<OpenWaterPoint(double J)> curve;
+  double inflow_offset = -1;
+  int sense = 1;              // the propeller turns right-handed about +x (REMUS: K_prop < 0)
+  double runaway_speed = 20;  // m/s; beyond it the run stops as diverged
+  // Where a diverging flow writes its last good fields (empty: kept in memory).
+  std::filesystem::path divergence_directory;
+};
+
+// What one advance() did, beside the state.
+struct CfdStepReport {
+  double time = 0;                          // s, the flow's
+  double rpm = 0, J = 0, inflow_speed = 0;  // rev/min, -, m/s
+  double thrust = 0, torque = 0;            // N, N m (on the fluid: the vehicle gets -torque)
+  std::vector<std::pair<std::string, fv::PatchForce>> walls;  // N, N m about the origin
+  std::vector<double> deflections;                            // rad, per fin
+  double coupling_change = 0;  // Dfbi::change() of the last correction (m/s^2, rad/s^2)
+  fv::StepReport flow;
+  double seconds = 0, seconds_fins = 0;  // wall clock: the whole advance, the fins' update
+};
+
+class CfdPlant final : public Plant {
+ public:
+  // Builds the grid system of settings.mesh at zero deflection and the solver. Throws
+  // std::invalid_argument naming a bad setting, a propeller disk off the grid, or an orphan.
+  CfdPlant(const geometry::Vehicle& vehicle, CfdPlantSettings settings);
+  ~CfdPlant() override;
+  CfdPlant(const CfdPlant&) = delete;
+  CfdPlant& operator=(const CfdPlant&) = delete;
+
+  [[nodiscard]] std::string name() const override { return "cfd"; }
+  // The body at `initial`, the water at rest around it (an impulsive start), the fins at zero.
+  void reset(const BodyState& initial) override;
+  PlantResult advance(const ActuatorValues& actuators, double dt) override;
+  [[nodiscard]] const BodyState& state() const override { return dfbi_.state(); }
+
+  [[nodiscard]] const CfdStepReport& last() const { return report_; }
+  [[nodiscard]] const fv::Pimple& flow() const;
+  [[nodiscard]] int cells() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  Dfbi dfbi_;
+  CfdStepReport report_;
+};
+
+}  // namespace auvloop::engine

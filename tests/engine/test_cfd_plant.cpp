@@ -1,0 +1,129 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The CFD plant (engine/cfd_plant.hpp) on the remus100 coarse system, a few steps of 2 ms from an
+// impulsive start (the physics is validated by the released-cylinder, actuator-disk and
+// remus-overset cases; here the plant's own contract):
+//   - towed (every degree of freedom held) the body keeps its state exactly, and the disk
+//     carries the curve's thrust and torque at the J it reports;
+//   - free in the horizontal plane with the rudder turning, two steps are bitwise the same on
+//     one and on two threads;
+//   - bad settings throw naming them; bad actuator values and a propeller without a curve are
+//     PlantFailures, not exceptions.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include <tbb/global_control.h>
+
+#include "auvloop/engine/cfd_plant.hpp"
+#include "auvloop/engine/vehicle_model.hpp"
+
+using namespace auvloop;
+using namespace auvloop::engine;
+
+namespace {
+const VehicleModel& remus() {
+  static const auto model = load_vehicle_model("preset:remus100");
+  return model;
+}
+
+// A light open-water curve, linear in J (only the plant's use of it is under test).
+OpenWaterPoint curve(double J) {
+  return {J, 0.2 * (0.6 - J), 0.03 * (0.7 - J)};
+}
+
+CfdPlantSettings settings(std::array<bool, 6> free) {
+  CfdPlantSettings s;
+  s.outer_iterations = 3;
+  s.free = free;
+  s.added_mass = prestero_added_mass(remus().hydrodynamics);
+  s.curve = curve;
+  return s;
+}
+
+BodyState straight() {
+  BodyState s;
+  s.nu[0] = 1.54;
+  return s;
+}
+}  // namespace
+
+TEST(CfdPlant, TowedHoldsTheBodyAndTheDiskCarriesTheCurvesLoad) {
+  CfdPlant plant(remus().vehicle, settings({false, false, false, false, false, false}));
+  plant.reset(straight());
+  ActuatorValues a;
+  a.rpm = 1500;
+  for (int n = 0; n < 2; ++n) {
+    const auto result = plant.advance(a, 0.002);
+    ASSERT_TRUE(std::holds_alternative<PlantStep>(result)) << std::get<PlantFailure>(result).reason;
+    const auto& step = std::get<PlantStep>(result);
+    EXPECT_EQ(step.state.nu, straight().nu);
+    EXPECT_EQ(step.acceleration, Vector6d::Zero());
+    EXPECT_NEAR(step.state.position.x(), 1.54 * 0.002 * (n + 1), 1e-15);
+  }
+  const auto& r = plant.last();
+  const double nr = 1500.0 / 60, D = remus().vehicle.propeller.diameter;
+  const double rho = remus().vehicle.mass.water_density;
+  EXPECT_GT(r.J, 0.3);  // the water meets the disk at about the vehicle's speed
+  EXPECT_LT(r.J, 0.5);
+  EXPECT_NEAR(r.J, r.inflow_speed / (nr * D), 1e-15);
+  EXPECT_NEAR(r.thrust, rho * curve(r.J).KT * nr * nr * std::pow(D, 4), 1e-12 * r.thrust);
+  EXPECT_NEAR(r.torque, rho * curve(r.J).KQ * nr * nr * std::pow(D, 5), 1e-12 * r.torque);
+  // The fluid received exactly -T along x from the disk (DiskForce renormalises its cells).
+  const auto& flow = plant.flow();
+  Eigen::Vector3d F = Eigen::Vector3d::Zero();
+  for (int c = 0; c < flow.mesh().cells(); ++c)
+    F += flow.mesh().volume(c) * flow.body_force[static_cast<std::size_t>(c)];
+  EXPECT_NEAR(rho * F.x() / -r.thrust, 1.0, 1e-12);
+  ASSERT_FALSE(r.walls.empty());
+  EXPECT_EQ(r.walls[0].first, "hull/hull");
+}
+
+TEST(CfdPlant, IsBitwiseTheSameOnOneAndTwoThreads) {
+  std::array<BodyState, 2> state;
+  std::array<Eigen::Vector3d, 2> hull;
+  for (int threads : {1, 2}) {
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
+                                    static_cast<std::size_t>(threads));
+    CfdPlant plant(remus().vehicle, settings(DfbiBody::horizontal));
+    plant.reset(straight());
+    ActuatorValues a;
+    a.rpm = 1500;
+    for (int n = 1; n <= 2; ++n) {
+      a.delta_r = 0.01 * n;  // rad: the rudders turn, the overset update runs
+      const auto result = plant.advance(a, 0.002);
+      ASSERT_TRUE(std::holds_alternative<PlantStep>(result))
+          << std::get<PlantFailure>(result).reason;
+    }
+    const auto t = static_cast<std::size_t>(threads - 1);
+    state[t] = plant.state();
+    hull[t] = plant.last().walls[0].second.total();
+    EXPECT_NE(plant.state().v(), 0.0) << "the rudder did not reach the body";
+  }
+  EXPECT_EQ(state[0].nu, state[1].nu);
+  EXPECT_EQ(state[0].position, state[1].position);
+  EXPECT_EQ(state[0].attitude.coeffs(), state[1].attitude.coeffs());
+  EXPECT_EQ(hull[0], hull[1]);
+}
+
+TEST(CfdPlant, NamesBadSettingsAndReturnsBadActuatorsAsFailures) {
+  auto s = settings(DfbiBody::horizontal);
+  s.outer_iterations = 0;
+  EXPECT_THROW(CfdPlant(remus().vehicle, s), std::invalid_argument);
+  s = settings(DfbiBody::horizontal);
+  s.relax = 1.5;
+  EXPECT_THROW(CfdPlant(remus().vehicle, s), std::invalid_argument);
+  s = settings(DfbiBody::horizontal);
+  s.curve = nullptr;
+  CfdPlant plant(remus().vehicle, s);
+  plant.reset(straight());
+  ActuatorValues a;
+  a.rpm = 1500;
+  const auto no_curve = plant.advance(a, 0.002);
+  ASSERT_TRUE(std::holds_alternative<PlantFailure>(no_curve));
+  EXPECT_NE(std::get<PlantFailure>(no_curve).reason.find("curve"), std::string::npos);
+  a.rpm = -100;
+  const auto reverse = plant.advance(a, 0.002);
+  ASSERT_TRUE(std::holds_alternative<PlantFailure>(reverse));
+  EXPECT_NE(std::get<PlantFailure>(reverse).reason.find("rpm"), std::string::npos);
+  EXPECT_EQ(plant.state().nu, straight().nu);  // nothing advanced
+}
