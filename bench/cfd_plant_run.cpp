@@ -30,7 +30,7 @@ using namespace auvloop;
 
 int main(int argc, char** argv) {
   CLI::App app{"The CFD plant on a straight run (towed or self-propelled), step by step"};
-  std::string mesh = "coarse", free = "none", csv;
+  std::string mesh = "coarse", free = "none", csv, convection = "linear-upwind-limited";
   double dt = 0.01, time = 2, speed = 1.54, rpm = 1500, pitch_ratio = 0.5, j_scale = 1;
   int threads = 2, outer = 5, every = 10, start_steps = 0;
   double start_dt = 0.002;
@@ -50,6 +50,10 @@ int main(int argc, char** argv) {
   app.add_option("--threads", threads, "threads")->check(CLI::PositiveNumber);
   app.add_option("--every", every, "a summary line every this many steps");
   app.add_option("--csv", csv, "per-step CSV file");
+  app.add_option("--convection", convection, "of U (fv::convection_from_string)");
+  double relax_u = 1, relax_p = 1;
+  app.add_option("--relax-u", relax_u, "U's under-relaxation, outer iterations but the last");
+  app.add_option("--relax-p", relax_p, "p's under-relaxation, outer iterations but the last");
   CLI11_PARSE(app, argc, argv);
   const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                                   static_cast<std::size_t>(threads));
@@ -59,6 +63,9 @@ int main(int argc, char** argv) {
   s.mesh = mesh;
   s.outer_iterations = outer;
   s.reference_speed = speed;
+  s.convection = engine::fv::convection_from_string(convection);
+  s.relax_u = relax_u;
+  s.relax_p = relax_p;
   if (free == "none") {  // 2.
     s.free = {false, false, false, false, false, false};
   } else if (free == "surge") {

@@ -59,11 +59,8 @@ void progress_line(double t, double total) {
 
 int run_case_command(const RunOptions& o) {
   engine::CaseSpec spec = engine::load_case(o.case_file);
-  if (!o.plant.empty())
-    spec.plant =
-        o.plant == "derivative" ? engine::PlantKind::derivative : engine::PlantKind::linearized;
-  const std::string plant =
-      spec.plant == engine::PlantKind::derivative ? "derivative" : "linearized";
+  if (!o.plant.empty()) spec.plant = engine::plant_kind_from_string(o.plant);
+  const std::string plant = engine::to_string(spec.plant);
   const std::string out = o.out.empty() ? fmt::format("out/{}-{}", spec.name, plant) : o.out;
   const bool bar = !o.quiet && isatty(STDERR_FILENO);
   const auto start = std::chrono::steady_clock::now();
@@ -151,7 +148,7 @@ void register_run_commands(CLI::App& app, int& exit_code) {
       ->check(CLI::ExistingFile);
   run->add_option("--out,-o", o->out, "Result directory (default: out/NAME-PLANT)");
   run->add_option("--plant", o->plant, "Override the case's plant")
-      ->check(CLI::IsMember({"derivative", "linearized"}));
+      ->check(CLI::IsMember({"derivative", "linearized", "cfd"}));
   run->add_flag("--quiet,-q", o->quiet, "Print nothing but errors");
   run->footer(
       "Writes manifest.json, timeseries.csv, metrics.json and plots (PNG, SVG) into the result\n"

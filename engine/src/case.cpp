@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "auvloop/engine/cfd_plant.hpp"
 #include "auvloop/engine/derivative_plant.hpp"
 
 namespace auvloop::engine {
@@ -105,9 +106,8 @@ void read_body(Table root, CaseSpec& c, const VehicleResolver& resolve_vehicle) 
   c.name = root.text("name");
   c.description = root.text_or("description", "");
   c.vehicle_spec = root.text_or("vehicle", "preset:remus100");
-  c.plant = root.choice_or("plant", "derivative", {"derivative", "linearized"}) == "derivative"
-                ? PlantKind::derivative
-                : PlantKind::linearized;
+  c.plant = plant_kind_from_string(
+      root.choice_or("plant", "derivative", {"derivative", "linearized", "cfd"}));
   c.horizontal_linearization =
       root.choice_or("linearization", "horizontal", {"horizontal", "full"}) == "horizontal";
   c.buoyancy = root.choice_or("buoyancy", "neutral", {"neutral", "vehicle"}) == "neutral"
@@ -125,6 +125,26 @@ void read_body(Table root, CaseSpec& c, const VehicleResolver& resolve_vehicle) 
   c.duration = time.number("duration", Range{0, 86400, true, false}, "s");
   time.finish();
   if (c.duration < c.dt) time.fail("duration", "must be at least one time step (dt)");
+}
+
+void read_cfd(Table root, CaseSpec& c) {
+  auto t = root.optional_table("cfd");
+  if (!t) return;
+  if (c.plant != PlantKind::cfd) {
+    root.fail("cfd",
+              fmt::format("[cfd] applies to plant = \"cfd\", not \"{}\"", to_string(c.plant)));
+    root.ignore("cfd");
+    return;
+  }
+  auto& f = c.cfd;
+  f.mesh = t->choice_or("mesh", "coarse", {"coarse", "medium", "fine"});
+  f.outer_iterations = static_cast<int>(t->integer_or("outer_iterations", 5, 1, 50));
+  f.sst = t->choice_or("turbulence", "sst", {"sst", "laminar"}) == "sst";
+  f.horizontal = t->choice_or("dof", "6dof", {"6dof", "horizontal"}) == "horizontal";
+  f.spin_up = t->number_or("spin_up", 1.0, Range::closed(0, 600), "s");
+  f.relax_u = t->number_or("relax_u", 0.7, Range::open_closed(0, 1), "");
+  f.relax_p = t->number_or("relax_p", 0.3, Range::open_closed(0, 1), "");
+  t->finish();
 }
 
 void read_initial(Table root, CaseSpec& c) {
@@ -167,6 +187,7 @@ CaseSpec parse_case(std::string_view text, const std::string& source_name,
   auto root = doc.root();
   CaseSpec c;
   read_body(root, c, resolve_vehicle);
+  read_cfd(root, c);
   read_initial(root, c);
   read_actuators(root, c);
   c.manoeuvre = read_manoeuvre(root, root.table("manoeuvre"), c.rudder);
@@ -212,7 +233,7 @@ nlohmann::json canonical_json(const CaseSpec& c) {
   const auto& mass = c.vehicle.vehicle.mass;
   json j{
       {"name", c.name},
-      {"plant", c.plant == PlantKind::derivative ? "derivative" : "linearized"},
+      {"plant", to_string(c.plant)},
       {"buoyancy", c.buoyancy == Buoyancy::neutral ? "neutral" : "vehicle"},
       {"dt_s", c.dt},
       {"duration_s", c.duration},
@@ -240,6 +261,17 @@ nlohmann::json canonical_json(const CaseSpec& c) {
           {"X_prop", h.X_prop},
           {"K_prop", h.K_prop},
           {"reference_rpm", h.reference_rpm}}}}}};
+  if (c.plant == PlantKind::cfd) {
+    const auto& w = c.vehicle.vehicle.propeller.open_water;
+    j["cfd"] = {{"mesh", c.cfd.mesh},
+                {"outer_iterations", c.cfd.outer_iterations},
+                {"turbulence", c.cfd.sst ? "sst" : "laminar"},
+                {"dof", c.cfd.horizontal ? "horizontal" : "6dof"},
+                {"spin_up_s", c.cfd.spin_up},
+                {"relax_u", c.cfd.relax_u},
+                {"relax_p", c.cfd.relax_p}};
+    j["vehicle"]["propeller"] = {{"open_water", {{"J", w.J}, {"KT", w.KT}, {"KQ", w.KQ}}}};
+  }
   std::visit(
       [&](const auto& m) {
         using T = std::decay_t<decltype(m)>;
@@ -290,12 +322,55 @@ std::unique_ptr<Manoeuvre> make_manoeuvre(const CaseSpec& c) {
 }
 }  // namespace
 
+const char* to_string(PlantKind k) {
+  switch (k) {
+    case PlantKind::derivative:
+      return "derivative";
+    case PlantKind::linearized:
+      return "linearized";
+    case PlantKind::cfd:
+      return "cfd";
+  }
+  return "?";
+}
+
+PlantKind plant_kind_from_string(const std::string& s) {
+  for (auto k : {PlantKind::derivative, PlantKind::linearized, PlantKind::cfd})
+    if (s == to_string(k)) return k;
+  throw std::invalid_argument("unknown plant '" + s + "' (derivative, linearized, cfd)");
+}
+
 CaseRun run_case(const CaseSpec& c, const std::function<void(double t)>& progress) {
   const PresteroModel model(c.vehicle.vehicle, c.vehicle.hydrodynamics, c.buoyancy);
   std::unique_ptr<Plant> plant;
   CaseRun run;
+  BodyState initial;
+  initial.nu[0] = c.initial_speed;
+  initial.attitude = quaternion_from_euler({0, 0, c.initial_heading});
   if (c.plant == PlantKind::derivative) {
     plant = std::make_unique<DerivativePlant>(model);
+  } else if (c.plant == PlantKind::cfd) {
+    CfdPlantSettings s;
+    s.mesh = c.cfd.mesh;
+    s.outer_iterations = c.cfd.outer_iterations;
+    s.sst = c.cfd.sst;
+    if (c.cfd.horizontal) s.free = DfbiBody::horizontal;
+    s.relax_u = c.cfd.relax_u;
+    s.relax_p = c.cfd.relax_p;
+    s.reference_speed = std::max(c.initial_speed, 0.1);
+    s.added_mass = prestero_added_mass(c.vehicle.hydrodynamics);
+    s.neutral_buoyancy = c.buoyancy == Buoyancy::neutral;
+    auto cfd = std::make_unique<CfdPlant>(c.vehicle.vehicle, s);
+    // The straight run the manoeuvre starts from (progress below zero: before t = 0).
+    if (const auto failure = cfd->spin_up(initial, c.rpm, c.cfd.spin_up, c.dt, [&](double t) {
+          if (progress) progress(t - c.cfd.spin_up);
+        })) {
+      run.plant_name = cfd->name();
+      run.loop.failure =
+          fmt::format("the cfd plant's straight run before t = 0 diverged: {}", failure->reason);
+      return run;
+    }
+    plant = std::move(cfd);
   } else {
     auto lin = linearize_straight_running(model, c.rpm, c.horizontal_linearization);
     run.eigenvalues = lin.eigenvalues();
@@ -308,11 +383,11 @@ CaseRun run_case(const CaseSpec& c, const std::function<void(double t)>& progres
   auto manoeuvre = make_manoeuvre(c);
   Actuators actuators{FirstOrderActuator(c.rudder, 0.0), FirstOrderActuator(c.stern_plane, 0.0),
                       FirstOrderActuator(c.propeller, c.rpm)};
-  BodyState initial;
-  initial.nu[0] = c.initial_speed;
-  initial.attitude = quaternion_from_euler({0, 0, c.initial_heading});
   run.loop = run_closed_loop(*plant, sensors, *manoeuvre, actuators, initial,
-                             {.dt = c.dt, .duration = c.duration, .progress = progress});
+                             {.dt = c.dt,
+                              .duration = c.duration,
+                              .progress = progress,
+                              .progress_every = c.plant == PlantKind::cfd ? 1 : 100});
   return run;
 }
 

@@ -123,7 +123,7 @@ LoopResult run_closed_loop(Plant& plant, Sensors& sensors, Manoeuvre& manoeuvre,
       break;
     }
     sensors.update(std::get<PlantStep>(r), applied, dt);  // 5
-    if (settings.progress && k % 100 == 0) settings.progress(t);
+    if (settings.progress && k % std::max(1, settings.progress_every) == 0) settings.progress(t);
   }
   result.series = std::move(recorder.series);
   return result;

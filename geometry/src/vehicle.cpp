@@ -203,6 +203,23 @@ PropellerParameters read_propeller(Table t, double tail_start) {
   p.hub_diameter = t.number("hub_diameter", Range::positive(), "m");
   p.station = t.number("station", Range::positive(), "m");
   p.disk_thickness = t.number("disk_thickness", Range::positive(), "m");
+  if (auto w = t.optional_table("open_water")) {
+    auto& c = p.open_water;
+    c.source = w->text("source");
+    c.J = w->numbers("J", 2, 1000, Range::non_negative(), "");
+    c.KT = w->numbers("KT", 2, 1000, Range::any(), "");
+    c.KQ = w->numbers("KQ", 2, 1000, Range::any(), "");
+    w->finish();
+    if (c.KT.size() != c.J.size() || c.KQ.size() != c.J.size())
+      w->fail("J", fmt::format("J, KT and KQ must have as many entries (now {}, {}, {})",
+                               c.J.size(), c.KT.size(), c.KQ.size()));
+    for (std::size_t i = 1; i < c.J.size(); ++i)
+      if (!(c.J[i] > c.J[i - 1])) {
+        w->fail("J", fmt::format("must increase strictly: entry {} ({:g}) follows {:g}", i + 1,
+                                 c.J[i], c.J[i - 1]));
+        break;
+      }
+  }
   t.finish();
   if (p.hub_diameter >= p.diameter) {
     t.fail("hub_diameter", fmt::format("must be smaller than diameter = {:g} m", p.diameter));

@@ -167,7 +167,7 @@ JobRecord Scheduler::evaluation_job(const OptimizationRecord& rec, const Runtime
   j.key = results::content_hash(engine::canonical_json(spec));
   // The study's files are stored once, with the optimisation; launch() adds them for the worker.
   j.payload = {{"case", rt.study.case_name}, {"gains", gains}};
-  j.plant = spec.plant == engine::PlantKind::derivative ? "derivative" : "linearized";
+  j.plant = engine::to_string(spec.plant);
   j.duration_s = spec.duration;
   j.timeout_s = rec.timeout_s;
   j.optimization_id = rec.id;

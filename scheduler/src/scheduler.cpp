@@ -165,7 +165,7 @@ v1::Job Scheduler::submit_case(const SourceBundle& source, double timeout_s) {
   job.name = spec.name;
   job.key = results::content_hash(engine::canonical_json(spec));
   job.payload = {{"bundle", to_json(source)}};
-  job.plant = spec.plant == engine::PlantKind::derivative ? "derivative" : "linearized";
+  job.plant = engine::to_string(spec.plant);
   job.duration_s = spec.duration;
   job.timeout_s = timeout_s > 0 ? timeout_s : config_.default_timeout_s;
   job.created_ms = now_ms();

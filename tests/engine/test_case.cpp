@@ -98,3 +98,30 @@ TEST(Case, BadFilesNameLineAndReason) {
       error_of(example("prestero-yaw.toml"), "[manoeuvre]", "[controller]\nkp = 1\n[manoeuvre]"),
       HasSubstr("open loop: remove [controller]"));
 }
+
+TEST(Case, CfdTableIsReadCheckedAndHashed) {
+  const CaseSpec c = parse_case(example("cfd-heading-step.toml"), "c", AUVLOOP_SOURCE_DIR);
+  EXPECT_EQ(c.plant, PlantKind::cfd);
+  EXPECT_EQ(c.cfd.mesh, "coarse");
+  EXPECT_EQ(c.cfd.outer_iterations, 5);
+  EXPECT_TRUE(c.cfd.sst);
+  EXPECT_TRUE(c.cfd.horizontal);
+  EXPECT_DOUBLE_EQ(c.cfd.spin_up, 1.0);
+  const auto j = canonical_json(c);
+  EXPECT_EQ(j["plant"], "cfd");
+  EXPECT_EQ(j["cfd"]["mesh"], "coarse");
+  EXPECT_FALSE(j["vehicle"]["propeller"]["open_water"]["J"].empty());
+  std::string changed = example("cfd-heading-step.toml");
+  changed.replace(changed.find("mesh = \"coarse\""), 15, "mesh = \"medium\"");
+  EXPECT_NE(j.dump(), canonical_json(parse_case(changed, "m", AUVLOOP_SOURCE_DIR)).dump());
+  EXPECT_THAT(error_of(example("cfd-heading-step.toml"), "mesh = \"coarse\"", "mesh = \"huge\""),
+              HasSubstr("cfd.mesh: \"huge\" is not allowed"));
+  EXPECT_THAT(
+      error_of(example("cfd-heading-step.toml"), "outer_iterations = 5", "outer_iterations = 0"),
+      HasSubstr("cfd.outer_iterations"));
+  EXPECT_THAT(
+      error_of(example("cfd-heading-step.toml"), "plant = \"cfd\"", "plant = \"derivative\""),
+      HasSubstr("[cfd] applies to plant = \"cfd\", not \"derivative\""));
+  EXPECT_THAT(error_of(example("cfd-heading-step.toml"), "relax_p = 0.3", "relax_p = 0"),
+              HasSubstr("cfd.relax_p"));
+}

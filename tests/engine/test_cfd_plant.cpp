@@ -6,8 +6,8 @@
 //     carries the curve's thrust and torque at the J it reports;
 //   - free in the horizontal plane with the rudder turning, two steps are bitwise the same on
 //     one and on two threads;
-//   - bad settings throw naming them; bad actuator values and a propeller without a curve are
-//     PlantFailures, not exceptions.
+//   - bad settings throw naming them; bad actuator values and a propeller without a curve (none
+//     set, none in the vehicle file) are PlantFailures, not exceptions.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -113,8 +113,10 @@ TEST(CfdPlant, NamesBadSettingsAndReturnsBadActuatorsAsFailures) {
   s.relax = 1.5;
   EXPECT_THROW(CfdPlant(remus().vehicle, s), std::invalid_argument);
   s = settings(DfbiBody::horizontal);
-  s.curve = nullptr;
-  CfdPlant plant(remus().vehicle, s);
+  s.curve = nullptr;  // and none in the vehicle file
+  auto vehicle = remus().vehicle;
+  vehicle.propeller.open_water = {};
+  CfdPlant plant(vehicle, s);
   plant.reset(straight());
   ActuatorValues a;
   a.rpm = 1500;

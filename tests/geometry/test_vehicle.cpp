@@ -114,6 +114,20 @@ TEST(Vehicle, CrossFieldChecks) {
               HasSubstr("is not a NACA four-digit designation"));
   EXPECT_THAT(load_error(preset_with("roll = 180", "roll = 90")),
               HasSubstr("two fins have the same roll angle"));
+  EXPECT_THAT(
+      load_error(preset_with("J  = [0.00, 0.05, 0.10,", "J  = [0.00, 0.10, 0.10,")),
+      HasSubstr("propeller.open_water.J: must increase strictly: entry 3 (0.1) follows 0.1"));
+  EXPECT_THAT(load_error(preset_with("KQ = [0.017446, ", "KQ = [")),
+              HasSubstr("J, KT and KQ must have as many entries (now 12, 12, 11)"));
+}
+
+TEST(Vehicle, PresetCarriesItsProvisionalOpenWaterCurve) {
+  const auto v = preset_vehicle("remus100");
+  const auto& w = v.propeller.open_water;
+  ASSERT_EQ(w.J.size(), 12U);
+  EXPECT_THAT(w.source, HasSubstr("uncalibrated"));
+  EXPECT_DOUBLE_EQ(w.KT[0], 0.18920);
+  EXPECT_DOUBLE_EQ(w.KQ.back(), 0.004408);
 }
 
 TEST(Vehicle, EveryProblemOfAFileIsReportedAtOnce) {

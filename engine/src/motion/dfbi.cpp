@@ -20,6 +20,21 @@ Eigen::Quaterniond rotation(const Eigen::Vector3d& angle) {
 }  // namespace
 
 Dfbi::Dfbi(DfbiBody body) : body_(std::move(body)) {
+  validate();
+}
+
+void Dfbi::set_free(const std::array<bool, 6>& free) {
+  const auto before = body_.free;
+  body_.free = free;
+  try {
+    validate();
+  } catch (...) {
+    body_.free = before;
+    throw;
+  }
+}
+
+void Dfbi::validate() const {
   if (!(body_.relax > 0 && body_.relax <= 1))
     throw std::invalid_argument(fmt::format(
         "DFBI: the relaxation of the acceleration must be in (0, 1], got {}", body_.relax));

@@ -109,6 +109,14 @@ CfdPlant::CfdPlant(const geometry::Vehicle& vehicle, CfdPlantSettings settings)
   m.vehicle = vehicle;
   m.settings = std::move(settings);
   const auto& s = m.settings;
+  if (!m.settings.curve && !vehicle.propeller.open_water.empty()) {
+    const auto& w = vehicle.propeller.open_water;
+    std::vector<OpenWaterPoint> points;
+    for (std::size_t i = 0; i < w.J.size(); ++i) points.push_back({w.J[i], w.KT[i], w.KQ[i]});
+    m.settings.curve = [table = OpenWaterTable(std::move(points))](double J) {
+      return table.at(J);
+    };
+  }
   m.rho = vehicle.mass.water_density;
   if (!(m.rho > 0))
     throw std::invalid_argument("CFD plant: the vehicle file gives no water density");
@@ -119,6 +127,8 @@ CfdPlant::CfdPlant(const geometry::Vehicle& vehicle, CfdPlantSettings settings)
   ps.nu = s.nu;
   ps.outer_iterations = s.outer_iterations;
   ps.convection = s.convection;
+  ps.relax_u = s.relax_u;
+  ps.relax_p = s.relax_p;
   // The nose rim's and fin roots' tiny cells pass Courant numbers of several hundred at 2 ms
   // and five times that at 10 ms while the flow stays smooth (measured): a guard against a
   // runaway only.
@@ -180,7 +190,13 @@ int CfdPlant::cells() const {
 
 void CfdPlant::reset(const BodyState& initial) {
   auto& m = *impl_;
+  dfbi_.set_free(m.settings.free);
   dfbi_.reset(initial);
+  if (spun_up_ && *spun_up_ == initial.nu) {
+    report_ = {};
+    return;
+  }
+  spun_up_.reset();
   if (m.sys->deflections() != std::vector<double>(m.rates.size(), 0.0)) {
     m.sys->set_fins(std::vector<double>(m.rates.size(), 0.0));
     if (m.sst) {
@@ -196,6 +212,35 @@ void CfdPlant::reset(const BodyState& initial) {
   m.move(initial);
   m.flow->initialise();
   report_ = {};
+}
+
+std::optional<PlantFailure> CfdPlant::spin_up(const BodyState& initial, double rpm, double duration,
+                                              double dt,
+                                              const std::function<void(double t)>& progress) {
+  spun_up_.reset();
+  reset(initial);
+  dfbi_.set_free({false, false, false, false, false, false});
+  ActuatorValues a;
+  a.rpm = rpm;
+  const double start = std::min(dt, kStartDt);
+  const int steps =
+      kStartSteps +
+      static_cast<int>(std::lround(std::max(0.0, duration - kStartSteps * start) / dt));
+  double t = 0;
+  for (int n = 0; n < steps; ++n) {
+    const double h = n < kStartSteps ? start : dt;
+    const auto result = advance(a, h);
+    if (const auto* failure = std::get_if<PlantFailure>(&result)) {
+      auto out = *failure;
+      reset(initial);
+      return out;
+    }
+    t += h;
+    if (progress) progress(t);
+  }
+  spun_up_ = initial.nu;
+  dfbi_.set_free(impl_->settings.free);
+  return std::nullopt;
 }
 
 PlantResult CfdPlant::advance(const ActuatorValues& a, double dt) {

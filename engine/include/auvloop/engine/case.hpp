@@ -17,7 +17,20 @@
 
 namespace auvloop::engine {
 
-enum class PlantKind { derivative, linearized };
+enum class PlantKind { derivative, linearized, cfd };
+const char* to_string(PlantKind k);  // "derivative", "linearized", "cfd"
+// Throws std::invalid_argument naming the choices.
+PlantKind plant_kind_from_string(const std::string& s);
+
+// The [cfd] table: the CFD plant's settings (docs/case-file.md; engine/cfd_plant.hpp).
+struct CfdSpec {
+  std::string mesh = "coarse";  // coarse, medium, fine
+  int outer_iterations = 5;
+  bool sst = true;          // turbulence = "sst" | "laminar"
+  bool horizontal = false;  // dof = "horizontal" (surge, sway, yaw) | "6dof"
+  double spin_up = 1.0;     // s of straight running, towed, before the manoeuvre's t = 0
+  double relax_u = 0.7, relax_p = 0.3;  // outer iterations but the last
+};
 
 struct HeadingStepSpec {
   double target_heading = 0;  // rad
@@ -52,6 +65,7 @@ struct CaseSpec {
   std::string vehicle_spec;  // as written: preset:NAME or a path (relative to the case file)
   VehicleModel vehicle;
   PlantKind plant = PlantKind::derivative;
+  CfdSpec cfd;                           // plant = "cfd" only
   bool horizontal_linearization = true;  // linearized plant: horizontal plane only
   Buoyancy buoyancy = Buoyancy::neutral;
   double dt = 0.01;            // s

@@ -27,6 +27,7 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -51,6 +52,8 @@ struct CfdPlantSettings {
   double intensity = 0.01, viscosity_ratio = 10;
   // The flow's numerics, as remus-overset-sst runs them (docs/overset-flow.md).
   fv::Convection convection = fv::Convection::linear_upwind_limited;
+  // Under-relaxation of U and p in every outer iteration but the last (fv::PimpleSettings).
+  double relax_u = 1.0, relax_p = 1.0;
   // Degrees of freedom (u v w p q r): all, or DfbiBody::horizontal.
   std::array<bool, 6> free{true, true, true, true, true, true};
   double relax = 1.0;  // of the body's acceleration in the coupling
@@ -60,8 +63,9 @@ struct CfdPlantSettings {
   // Buoyancy: true takes B = W (horizontal-plane manoeuvres without depth control, as the
   // derivative plant's default); false the vehicle file's.
   bool neutral_buoyancy = true;
-  // The propeller's open-water curve (required when rpm > 0) and its inflow plane's offset
-  // ahead of the disk (m; < 0: a quarter of the diameter).
+  // The propeller's open-water curve (empty: the vehicle file's [propeller.open_water]; one of
+  // the two is required when rpm > 0) and its inflow plane's offset ahead of the disk (m; < 0:
+  // a quarter of the diameter).
   std::function<OpenWaterPoint(double J)> curve;
   double inflow_offset = -1;
   int sense = 1;              // the propeller turns right-handed about +x (REMUS: K_prop < 0)
@@ -92,8 +96,21 @@ class CfdPlant final : public Plant {
   CfdPlant& operator=(const CfdPlant&) = delete;
 
   [[nodiscard]] std::string name() const override { return "cfd"; }
-  // The body at `initial`, the water at rest around it (an impulsive start), the fins at zero.
+  // The body at `initial` with the settings' degrees of freedom free. The flow: the straight
+  // run of spin_up() when it was at the same body velocity (the flow in the body's axes does not
+  // depend on heading or position), else water at rest around the body (an impulsive start),
+  // the fins at zero.
   void reset(const BodyState& initial) override;
+  // The straight run a manoeuvre starts from: the body towed at initial.nu (every degree of
+  // freedom held), the propeller at rpm, the fins at zero, for `duration` seconds of steps of dt,
+  // the first kStartSteps of them no longer than kStartDt (an impulsive start's pressure spike
+  // at the nose rim; docs/cfd-plant.md). progress(t) after every step. A failure is returned;
+  // the plant is then as after a reset to water at rest.
+  std::optional<PlantFailure> spin_up(const BodyState& initial, double rpm, double duration,
+                                      double dt,
+                                      const std::function<void(double t)>& progress = {});
+  static constexpr int kStartSteps = 10;
+  static constexpr double kStartDt = 0.002;  // s
   PlantResult advance(const ActuatorValues& actuators, double dt) override;
   [[nodiscard]] const BodyState& state() const override { return dfbi_.state(); }
 
@@ -106,6 +123,7 @@ class CfdPlant final : public Plant {
   std::unique_ptr<Impl> impl_;
   Dfbi dfbi_;
   CfdStepReport report_;
+  std::optional<Vector6d> spun_up_;  // the body velocity of spin_up()'s flow, while it holds
 };
 
 }  // namespace auvloop::engine

@@ -85,7 +85,8 @@ struct Actuators {
 struct LoopSettings {
   double dt = 0.01;                        // s, for controller, actuators, plant and sensors alike
   double duration = 30;                    // s
-  std::function<void(double t)> progress;  // called now and then with the simulated time
+  std::function<void(double t)> progress;  // called now and then with the simulated time...
+  int progress_every = 100;                // ...every this many steps (a CFD plant: every one)
 };
 
 struct LoopResult {

@@ -77,9 +77,13 @@ class Dfbi {
   [[nodiscard]] const DfbiHistory& history() const { return history_; }
   void restore(const DfbiHistory& h);
   [[nodiscard]] const DfbiBody& body() const { return body_; }
+  // Frees or holds degrees of freedom from the next step on (a towed start, then released);
+  // throws std::invalid_argument as the constructor, keeping the previous set.
+  void set_free(const std::array<bool, 6>& free);
 
  private:
   void advance_iterate();  // step 3 from history_ with a_
+  void validate() const;   // the invariants
   DfbiBody body_;
   DfbiHistory history_;
   BodyState iterate_;

@@ -69,11 +69,20 @@ struct MassProperties {
   [[nodiscard]] double weight() const { return mass * gravity; }  // N
 };
 
+// The propeller's open-water curve: KT and KQ at advance ratios J (strictly increasing, at least
+// two), with where the numbers come from. Empty when the file gives none.
+struct OpenWaterCurve {
+  std::string source;
+  std::vector<double> J, KT, KQ;
+  [[nodiscard]] bool empty() const { return J.empty(); }
+};
+
 struct PropellerParameters {
   double diameter = 0;        // m
   double hub_diameter = 0;    // m
   double station = 0;         // m aft of nose: centre of the actuator disk
   double disk_thickness = 0;  // m, axial extent of the body-force disk
+  OpenWaterCurve open_water;  // [propeller.open_water]
 };
 
 struct Vehicle {
