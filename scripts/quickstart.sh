@@ -34,6 +34,11 @@ echo "== Comparison"
 "$auvloop" compare "$out/heading-step-derivative" "$out/heading-step-linearized" \
   --label derivative --label linearized --out "$out/heading-step-comparison"
 echo
+echo "== The first second of the heading step on the CFD plant (coarse mesh, SST; docs/cfd-plant.md)"
+# The flow around the vehicle solved every 10 ms step, the body moving with it (about two
+# minutes). The whole 30 s manoeuvre: examples/cfd-heading-step.toml (about 70 minutes).
+"$auvloop" run examples/cfd-quickstart.toml --out "$out/cfd-quickstart"
+echo
 echo "== The paper's PID tuning through the scheduler daemon (docs/scheduler.md)"
 # A private daemon: its own state directory and socket, so a daemon of yours is not disturbed.
 daemon=(--state-dir "$out/daemon-state" --socket "${TMPDIR:-/tmp}/auvloop-quickstart-$(id -u).sock")

@@ -99,6 +99,11 @@ TEST(Case, BadFilesNameLineAndReason) {
       HasSubstr("open loop: remove [controller]"));
 }
 
+TEST(Case, CfdExamplesParse) {
+  for (const char* name : {"cfd-heading-step.toml", "cfd-quickstart.toml"})
+    EXPECT_EQ(parse_case(example(name), name, AUVLOOP_SOURCE_DIR).plant, PlantKind::cfd) << name;
+}
+
 TEST(Case, CfdTableIsReadCheckedAndHashed) {
   const CaseSpec c = parse_case(example("cfd-heading-step.toml"), "c", AUVLOOP_SOURCE_DIR);
   EXPECT_EQ(c.plant, PlantKind::cfd);
