@@ -62,22 +62,22 @@ struct CfdPlant::Impl {
   double rpm = 0;
   double J = 0, inflow = 0, thrust = 0, torque = 0;  // the load the flow has now (N, N m)
 
-  // The body's motion (the iterate) on every grid.
-  void move(const BodyState& body) {
+  // The body frame's motion: nu = (u, v, w, p, q, r).
+  static fv::FrameMotion body_motion(const BodyState& body) {
     fv::FrameMotion m;
     m.velocity = body.nu.head<3>();
     m.rate = body.nu.tail<3>();
-    flow->set_motion(sys->motions(m, rates));
+    return m;
   }
+
+  // The body's motion (the iterate) on every grid.
+  void move(const BodyState& body) { flow->set_motion(sys->motions(body_motion(body), rates)); }
 
   // Step 4 at the body's iterate.
   void propel(const BodyState& body) {
     const double n = rpm / 60;  // rev/s
     const double D = vehicle.propeller.diameter;
-    fv::FrameMotion m;
-    m.velocity = body.nu.head<3>();
-    m.rate = body.nu.tail<3>();
-    inflow = disk->inflow_speed(flow->U, m);
+    inflow = disk->inflow_speed(flow->U, body_motion(body));
     if (n > 0) {
       J = std::max(0.0, inflow) / (n * D);
       const auto point = settings.curve(J);

@@ -478,6 +478,17 @@ Result run_rotating_frame_at_rest(bool quick) {
       bound_row("max |p| / max |w|^2", r.max_p / std::pow(r.max_grid_speed, 2), 1e-12));
   return res;
 }
+// The unconfined cylinder's grid of galilean-cylinder and released-cylinder: the default (64
+// cells round, a box 40 D across), or the quick cases' coarse one (32 round, 16 out, 30 D).
+mesher::UnconfinedCylinderSpec unconfined_grid(bool quick) {
+  mesher::UnconfinedCylinderSpec g;
+  if (quick) {
+    g.around = 32;
+    g.radial_cells = 16;
+    g.extent = 30;
+  }
+  return g;
+}
 // galilean-cylinder: the unconfined cylinder at Re = 100 fixed in the stream and towed through
 // fluid at rest. Full (validation-data.md section 3): the default grid (64 cells round, a box
 // 40 D across), dt = 0.02 s to 150 s, the last 5 periods: St, mean cD and the cL amplitude of
@@ -487,12 +498,9 @@ Result run_rotating_frame_at_rest(bool quick) {
 // largest |cD| at every step.
 Result run_galilean_cylinder(bool quick) {
   Result res{"galilean-cylinder", {}, {}};
-  mesher::UnconfinedCylinderSpec g;
+  const auto g = unconfined_grid(quick);
   double dt = 0.02, end = 150;
   if (quick) {
-    g.around = 32;
-    g.radial_cells = 16;
-    g.extent = 30;
     dt = 0.04;
     end = 4;
   }
@@ -535,13 +543,10 @@ Result run_galilean_cylinder(bool quick) {
 // 30 D box), 10 steps of 10 ms; full: its default grid (64 round, 40 D), 20 steps of 5 ms.
 Result run_released_cylinder(bool quick) {
   Result res{"released-cylinder", {}, {}};
-  mesher::UnconfinedCylinderSpec g;
+  const auto g = unconfined_grid(quick);
   double dt = 0.005;
   int steps = 20;
   if (quick) {
-    g.around = 32;
-    g.radial_cells = 16;
-    g.extent = 30;
     dt = 0.01;
     steps = 10;
   }
