@@ -9,7 +9,9 @@
 //      --j-scale (KT(J) = KT_B(J / j_scale): an effective pitch; 1: the plain B-series);
 //   3. per step a CSV row (--csv): t, u, v, r (rad/s), the walls' x force (pressure, shear), the
 //      propeller's J, inflow speed, thrust and torque, the coupling's last change, the step's
-//      wall clock and outer residual; a summary line every --every steps with the ETA.
+//      wall clock and outer residual, its phases (s: fins, coupling, momentum, pressure,
+//      turbulence, overset, other) and pressure iterations, then each wall's x force (pressure,
+//      shear; N); a summary line every --every steps with the ETA.
 //   --start-steps N --start-dt S: N steps of S first (an impulsive start's spike at the nose rim
 //   needs a short step; then --dt).
 //   cfd_plant_run [--mesh coarse] [--dt 0.01] [--time 2] [--speed 1.54] [--rpm 1500]
@@ -33,7 +35,7 @@ int main(int argc, char** argv) {
   std::string mesh = "coarse", free = "none", csv, convection = "linear-upwind-limited";
   double dt = 0.01, time = 2, speed = 1.54, rpm = 1500, pitch_ratio = 0.5, j_scale = 1;
   int threads = 2, outer = 5, every = 10, start_steps = 0;
-  double start_dt = 0.002;
+  double start_dt = 0.002, nu = engine::CfdPlantSettings{}.nu;
   app.add_option("--mesh", mesh, "mesh preset")->check(CLI::IsMember({"coarse", "medium", "fine"}));
   app.add_option("--dt", dt, "time step (s)")->check(CLI::PositiveNumber);
   app.add_option("--start-steps", start_steps,
@@ -46,6 +48,7 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"none", "surge", "horizontal", "6dof"}));
   app.add_option("--pitch-ratio", pitch_ratio, "B-series P/D of the curve's shape");
   app.add_option("--j-scale", j_scale, "KT(J) = KT_B(J / j_scale)")->check(CLI::PositiveNumber);
+  app.add_option("--nu", nu, "kinematic viscosity (m^2/s)")->check(CLI::PositiveNumber);
   app.add_option("--outer", outer, "outer iterations per step")->check(CLI::PositiveNumber);
   app.add_option("--threads", threads, "threads")->check(CLI::PositiveNumber);
   app.add_option("--every", every, "a summary line every this many steps");
@@ -62,6 +65,7 @@ int main(int argc, char** argv) {
   engine::CfdPlantSettings s;  // 1.
   s.mesh = mesh;
   s.outer_iterations = outer;
+  s.nu = nu;
   s.reference_speed = speed;
   s.convection = engine::fv::convection_from_string(convection);
   s.relax_u = relax_u;
@@ -91,9 +95,8 @@ int main(int argc, char** argv) {
   std::ofstream out;
   if (!csv.empty()) {
     out.open(csv);
-    out << "t,u,v,r,Fx_pressure,Fx_shear,J,inflow,thrust,torque,coupling_change,seconds,"
-           "outer_residual\n";
   }
+  bool header = false;  // written after the first step, when the walls' names are known
   const int steps =
       start_steps +
       static_cast<int>(std::lround(std::max(0.0, time - start_steps * start_dt) / dt));
@@ -114,12 +117,29 @@ int main(int argc, char** argv) {
       v += f.viscous;
     }
     const auto& st = plant.state();
-    if (out)
+    if (out && !header) {
+      out << "t,u,v,r,Fx_pressure,Fx_shear,J,inflow,thrust,torque,coupling_change,seconds,"
+             "outer_residual,s_fins,s_coupling,s_momentum,s_pressure,s_turbulence,s_overset,"
+             "s_other,pressure_iterations";
+      for (const auto& [name, f] : r.walls) out << fmt::format(",Fx_p_{0},Fx_v_{0}", name);
+      out << "\n";
+      header = true;
+    }
+    if (out) {
       out << fmt::format(
           "{:.6g},{:.9g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},"
-          "{:.3g},{:.4g},{:.3g}\n",
+          "{:.3g},{:.4g},{:.3g}",
           r.time, st.u(), st.v(), st.r(), p.x(), v.x(), r.J, r.inflow_speed, r.thrust, r.torque,
           r.coupling_change, r.seconds, r.flow.outer_residual);
+      const auto& fl = r.flow;
+      out << fmt::format(",{:.4g},{:.4g},{:.4g},{:.4g},{:.4g},{:.4g},{:.4g},{}", r.seconds_fins,
+                         r.seconds_coupling, fl.seconds_momentum, fl.seconds_pressure,
+                         fl.seconds_turbulence, fl.seconds_overset, fl.seconds_other,
+                         fl.pressure_iterations);
+      for (const auto& [name, f] : r.walls)
+        out << fmt::format(",{:.6g},{:.6g}", f.pressure.x(), f.viscous.x());
+      out << "\n";
+    }
     if (n % every == 0 || n == steps)
       std::printf(
           "t %.3f s: u %.4f m/s, walls Fx %.3f N (pressure %.3f, shear %.3f), J %.3f, V_a "

@@ -4,13 +4,16 @@
 
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
+#include <optional>
 
 #include <fmt/format.h>
 
 #include "auvloop/engine/case.hpp"
 #include "auvloop/results/manoeuvre_metrics.hpp"
 #include "auvloop/results/run_directory.hpp"
+#include "auvloop/scheduler/paths.hpp"
 #include "cli.hpp"
 
 namespace auvloop::cli {
@@ -22,6 +25,8 @@ struct RunOptions {
   std::string out;
   std::string plant;
   bool quiet = false;
+  bool resume = false;
+  double checkpoint_every = 0;  // s simulated; 0: the plant's default
   std::vector<std::string> dirs;
   std::vector<std::string> labels;
 };
@@ -49,13 +54,33 @@ void flatten(const json& j, const std::string& prefix,
   }
 }
 
-void progress_line(double t, double total) {
-  const int width = 30;
-  const int filled = static_cast<int>(width * std::min(1.0, t / total));
-  fmt::print(stderr, "\r  [{}{}] t = {:6.1f} / {:.1f} s",
-             std::string(static_cast<std::size_t>(filled), '#'),
-             std::string(static_cast<std::size_t>(width - filled), '.'), t, total);
-}
+// The bar, simulated time and, once a few seconds of wall clock give a rate, the ETA (from the
+// rate since the first call: a resumed run's or a CFD straight run's own).
+class ProgressLine {
+ public:
+  explicit ProgressLine(double total) : total_(total) {}
+  void operator()(double t) {
+    const auto now = std::chrono::steady_clock::now();
+    if (!first_) first_ = std::pair{t, now};
+    const double wall = std::chrono::duration<double>(now - first_->second).count();
+    const double done = t - first_->first;
+    std::string eta;
+    if (wall > 3 && done > 0) {
+      const double rate = done / wall;  // simulated s per wall s
+      const auto left = static_cast<long>((total_ - t) / rate);
+      eta = fmt::format(", {:.3g}x real time, ETA {}:{:02d}", rate, left / 60, left % 60);
+    }
+    const int width = 30;
+    const int filled = static_cast<int>(width * std::clamp(t / total_, 0.0, 1.0));
+    fmt::print(stderr, "\r  [{}{}] t = {:6.2f} / {:.1f} s{}   ",
+               std::string(static_cast<std::size_t>(filled), '#'),
+               std::string(static_cast<std::size_t>(width - filled), '.'), t, total_, eta);
+  }
+
+ private:
+  double total_;
+  std::optional<std::pair<double, std::chrono::steady_clock::time_point>> first_;
+};
 
 int run_case_command(const RunOptions& o) {
   engine::CaseSpec spec = engine::load_case(o.case_file);
@@ -64,9 +89,21 @@ int run_case_command(const RunOptions& o) {
   const std::string out = o.out.empty() ? fmt::format("out/{}-{}", spec.name, plant) : o.out;
   const bool bar = !o.quiet && isatty(STDERR_FILENO);
   const auto start = std::chrono::steady_clock::now();
-  const engine::CaseRun run =
-      engine::run_case(spec, bar ? [&](double t) { progress_line(t, spec.duration); }
-                                 : std::function<void(double)>{});
+  engine::CaseRunOptions options;
+  if (bar) options.progress = ProgressLine(spec.duration);
+  options.checkpoint = out + ".checkpoint";
+  options.checkpoint_every = o.checkpoint_every;
+  options.checkpoint_key = results::content_hash(engine::canonical_json(spec));
+  options.resume = o.resume;
+  if (spec.plant == engine::PlantKind::cfd)
+    options.straight_run = scheduler::default_state_dir() / "straight-runs" /
+                           (results::content_hash(engine::straight_run_json(spec)) + ".flow");
+  const bool stopped_run = std::filesystem::exists(options.checkpoint);
+  if (stopped_run && !o.quiet)
+    fmt::print(stderr, "{} a stopped run's checkpoint, {}\n",
+               o.resume ? "continuing from" : "starting afresh beside",
+               options.checkpoint.string());
+  const engine::CaseRun run = engine::run_case(spec, options);
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (bar) fmt::print(stderr, "\r{:60}\r", "");
@@ -81,9 +118,15 @@ int run_case_command(const RunOptions& o) {
     report.metrics["linearization_eigenvalues_per_s"] = eig;
   }
   const auto written = results::write_run_directory(out, report);
+  std::filesystem::remove(options.checkpoint);  // the run's results are complete
+  if (run.loop.checkpoint_warning)
+    fmt::print(stderr, "warning: {}\n", *run.loop.checkpoint_warning);
+  if (run.straight_run_warning) fmt::print(stderr, "warning: {}\n", *run.straight_run_warning);
   if (!o.quiet) {
     fmt::print("{} ({}, {} plant, dt {} s, {} s simulated in {:.3f} s)\n", spec.name,
                spec.manoeuvre_type(), plant, spec.dt, run.loop.final_time, wall);
+    if (!run.straight_run.empty())
+      fmt::print("  straight run before t = 0: {}\n", run.straight_run);
     std::vector<std::pair<std::string, std::string>> rows;
     flatten(report.metrics, "", rows);
     for (const auto& [k, v] : rows) fmt::print("  {:<40} {}\n", k, v);
@@ -150,9 +193,19 @@ void register_run_commands(CLI::App& app, int& exit_code) {
   run->add_option("--plant", o->plant, "Override the case's plant")
       ->check(CLI::IsMember({"derivative", "linearized", "cfd"}));
   run->add_flag("--quiet,-q", o->quiet, "Print nothing but errors");
+  run->add_flag("--resume", o->resume,
+                "Continue a stopped run from its checkpoint (OUT.checkpoint), bitwise as if it "
+                "had not stopped; without one, start afresh");
+  run->add_option("--checkpoint-every", o->checkpoint_every,
+                  "Simulated seconds between checkpoints (default: 1 on the CFD plant, none on "
+                  "the others)")
+      ->check(CLI::PositiveNumber);
   run->footer(
       "Writes manifest.json, timeseries.csv, metrics.json and plots (PNG, SVG) into the result\n"
-      "directory, replacing an earlier result there only once the new one is complete.\n"
+      "directory, replacing an earlier result there only once the new one is complete. A CFD\n"
+      "run writes a checkpoint beside it (OUT.checkpoint) every simulated second; if the run is\n"
+      "stopped (Ctrl-C, a reboot), the same command with --resume continues it; a checkpoint\n"
+      "of the case file as it was before an edit is refused.\n"
       "Example: auvloop run examples/heading-step.toml --plant linearized");
   run->callback([o, &exit_code] { exit_code = run_case_command(*o); });
 

@@ -20,4 +20,15 @@ double FirstOrderActuator::step(double command, double dt) {
   return value_;
 }
 
+void FirstOrderActuator::save(StateWriter& out) const {
+  out.put(value_);
+  out.put(limited_);
+}
+
+void FirstOrderActuator::load(StateReader& in) {
+  const auto value = in.get<double>();
+  limited_ = in.get<bool>();
+  value_ = value;
+}
+
 }  // namespace auvloop::engine

@@ -8,6 +8,7 @@
 
 #include "auvloop/engine/cfd_plant.hpp"
 #include "auvloop/engine/derivative_plant.hpp"
+#include "auvloop/geometry/file_io.hpp"
 
 namespace auvloop::engine {
 namespace {
@@ -302,6 +303,22 @@ nlohmann::json canonical_json(const CaseSpec& c) {
   return j;
 }
 
+nlohmann::json straight_run_json(const CaseSpec& c) {
+  auto all = canonical_json(c);
+  nlohmann::json j{{"what", "the straight run of a CFD case before t = 0"},
+                   {"plant", all["plant"]},
+                   {"buoyancy", all["buoyancy"]},
+                   {"dt_s", all["dt_s"]},
+                   {"speed_m_s", all["initial"]["speed_m_s"]},
+                   {"rpm", all["initial"]["rpm"]},
+                   {"vehicle", all["vehicle"]}};
+  if (all.contains("cfd")) {
+    j["cfd"] = all["cfd"];
+    j["cfd"].erase("dof");  // every degree of freedom is held in the straight run
+  }
+  return j;
+}
+
 namespace {
 std::unique_ptr<Manoeuvre> make_manoeuvre(const CaseSpec& c) {
   return std::visit(
@@ -341,6 +358,19 @@ PlantKind plant_kind_from_string(const std::string& s) {
 }
 
 CaseRun run_case(const CaseSpec& c, const std::function<void(double t)>& progress) {
+  CaseRunOptions o;
+  o.progress = progress;
+  return run_case(c, o);
+}
+
+namespace {
+constexpr std::string_view kStraightRunTag = "auvloop straight run";
+}
+
+CaseRun run_case(const CaseSpec& c, const CaseRunOptions& options) {
+  const auto& progress = options.progress;
+  const bool resuming =
+      options.resume && !options.checkpoint.empty() && std::filesystem::exists(options.checkpoint);
   const PresteroModel model(c.vehicle.vehicle, c.vehicle.hydrodynamics, c.buoyancy);
   std::unique_ptr<Plant> plant;
   CaseRun run;
@@ -361,10 +391,43 @@ CaseRun run_case(const CaseSpec& c, const std::function<void(double t)>& progres
     s.added_mass = prestero_added_mass(c.vehicle.hydrodynamics);
     s.neutral_buoyancy = c.buoyancy == Buoyancy::neutral;
     auto cfd = std::make_unique<CfdPlant>(c.vehicle.vehicle, s);
-    // The straight run the manoeuvre starts from (progress below zero: before t = 0).
-    if (const auto failure = cfd->spin_up(initial, c.rpm, c.cfd.spin_up, c.dt, [&](double t) {
-          if (progress) progress(t - c.cfd.spin_up);
-        })) {
+    // The straight run the manoeuvre starts from (progress below zero: before t = 0): a resumed
+    // run's flow is in its checkpoint; a stored one is loaded; else it is computed (and stored).
+    std::optional<PlantFailure> failure;
+    const auto& file = options.straight_run;
+    if (resuming) {
+      run.straight_run = "in the checkpoint";
+    } else if (!file.empty() && std::filesystem::exists(file)) {
+      try {
+        StateReader in(read_file_text(file), file.string());
+        in.expect_tag(kStraightRunTag);
+        cfd->load(in);
+        in.expect_end();
+        run.straight_run = "loaded from " + file.string();
+      } catch (const std::runtime_error& e) {
+        run.straight_run_warning =
+            fmt::format("the stored straight run was not used: {}", e.what());
+      }
+    }
+    if (run.straight_run.empty()) {
+      failure = cfd->spin_up(initial, c.rpm, c.cfd.spin_up, c.dt, [&](double t) {
+        if (progress) progress(t - c.cfd.spin_up);
+      });
+      run.straight_run = "computed";
+      if (!failure && !file.empty()) {
+        try {
+          StateWriter out;
+          out.tag(kStraightRunTag);
+          cfd->save(out);
+          if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
+          write_file_atomically(file, out.bytes());
+          run.straight_run = "computed and stored in " + file.string();
+        } catch (const std::exception& e) {
+          run.straight_run_warning = fmt::format("the straight run was not stored: {}", e.what());
+        }
+      }
+    }
+    if (failure) {
       run.plant_name = cfd->name();
       run.loop.failure =
           fmt::format("the cfd plant's straight run before t = 0 diverged: {}", failure->reason);
@@ -383,11 +446,19 @@ CaseRun run_case(const CaseSpec& c, const std::function<void(double t)>& progres
   auto manoeuvre = make_manoeuvre(c);
   Actuators actuators{FirstOrderActuator(c.rudder, 0.0), FirstOrderActuator(c.stern_plane, 0.0),
                       FirstOrderActuator(c.propeller, c.rpm)};
-  run.loop = run_closed_loop(*plant, sensors, *manoeuvre, actuators, initial,
-                             {.dt = c.dt,
-                              .duration = c.duration,
-                              .progress = progress,
-                              .progress_every = c.plant == PlantKind::cfd ? 1 : 100});
+  const double every = options.checkpoint_every > 0 ? options.checkpoint_every
+                       : c.plant == PlantKind::cfd  ? 1.0
+                                                    : 0.0;
+  run.loop =
+      run_closed_loop(*plant, sensors, *manoeuvre, actuators, initial,
+                      {.dt = c.dt,
+                       .duration = c.duration,
+                       .progress = progress,
+                       .progress_every = c.plant == PlantKind::cfd ? 1 : 100,
+                       .checkpoint = options.checkpoint,
+                       .checkpoint_every = every > 0 ? std::max(1L, std::lround(every / c.dt)) : 0,
+                       .checkpoint_key = options.checkpoint_key,
+                       .resume = options.resume});
   return run;
 }
 

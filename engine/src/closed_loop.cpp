@@ -6,6 +6,8 @@
 
 #include <fmt/format.h>
 
+#include "auvloop/geometry/file_io.hpp"
+
 namespace auvloop::engine {
 namespace {
 constexpr double kDeg = 180.0 / std::numbers::pi;
@@ -96,16 +98,105 @@ Commands ZigZag::command(double, const Measurements& m, double) {
   return c;
 }
 
+void HeadingStep::save(StateWriter& out) const {
+  out.tag("heading step");
+  pid_.save(out);
+}
+
+void HeadingStep::load(StateReader& in) {
+  in.expect_tag("heading step");
+  pid_.load(in);
+}
+
+void RudderRamp::save(StateWriter& out) const {
+  out.tag("rudder ramp");
+}
+
+void RudderRamp::load(StateReader& in) {
+  in.expect_tag("rudder ramp");
+}
+
+void ZigZag::save(StateWriter& out) const {
+  out.tag("zig-zag");
+  out.put(direction_);
+}
+
+void ZigZag::load(StateReader& in) {
+  in.expect_tag("zig-zag");
+  direction_ = in.get<int>();
+}
+
+void Actuators::save(StateWriter& out) const {
+  out.tag("actuators");
+  for (const auto* a : {&rudder, &stern_plane, &propeller}) a->save(out);
+}
+
+void Actuators::load(StateReader& in) {
+  in.expect_tag("actuators");
+  for (auto* a : {&rudder, &stern_plane, &propeller}) a->load(in);
+}
+
+namespace {
+constexpr std::string_view kLoopMagic = "auvloop closed-loop checkpoint";
+constexpr std::uint32_t kLoopVersion = 1;
+}  // namespace
+
 LoopResult run_closed_loop(Plant& plant, Sensors& sensors, Manoeuvre& manoeuvre,
                            Actuators& actuators, const BodyState& initial,
                            const LoopSettings& settings) {
   const double dt = settings.dt;
   const auto steps = static_cast<long>(std::llround(settings.duration / dt));
-  plant.reset(initial);
-  sensors.reset(initial, actuators.values());
   Recorder recorder;
   LoopResult result;
-  for (long k = 0;; ++k) {
+  long first = 0;
+  if (settings.resume && !settings.checkpoint.empty() &&
+      std::filesystem::exists(settings.checkpoint)) {
+    StateReader in(read_file_text(settings.checkpoint), settings.checkpoint.string());
+    in.expect_tag(kLoopMagic);
+    if (const auto version = in.get<std::uint32_t>(); version != kLoopVersion)
+      in.fail(fmt::format("version {}, this build reads version {}", version, kLoopVersion));
+    if (const auto key = in.get_string(); key != settings.checkpoint_key)
+      in.fail(
+          fmt::format("written for another run (key {}, this run's {}): remove it to start "
+                      "afresh",
+                      key.substr(0, 16), settings.checkpoint_key.substr(0, 16)));
+    first = in.get<std::int64_t>();
+    if (first < 1 || first > steps)
+      in.fail(fmt::format("step {} is not within this run's {} steps", first, steps));
+    plant.load(in);
+    sensors.load(in);
+    manoeuvre.load(in);
+    actuators.load(in);
+    recorder.series.load(in);
+    in.expect_end();
+    if (recorder.series.rows() != static_cast<std::size_t>(first))
+      in.fail(fmt::format("{} recorded rows for step {}", recorder.series.rows(), first));
+    result.resumed_at = first;
+  } else {
+    plant.reset(initial);
+    sensors.reset(initial, actuators.values());
+  }
+  const auto write_checkpoint = [&](long next) {
+    try {
+      StateWriter out;
+      out.tag(kLoopMagic);
+      out.put(kLoopVersion);
+      out.put(std::string_view(settings.checkpoint_key));
+      out.put(static_cast<std::int64_t>(next));
+      plant.save(out);
+      sensors.save(out);
+      manoeuvre.save(out);
+      actuators.save(out);
+      recorder.series.save(out);
+      if (settings.checkpoint.has_parent_path())
+        std::filesystem::create_directories(settings.checkpoint.parent_path());
+      write_file_atomically(settings.checkpoint, out.bytes());
+    } catch (const std::exception& e) {
+      result.checkpoint_warning =
+          fmt::format("checkpoint at step {} not written: {}", next, e.what());
+    }
+  };
+  for (long k = first;; ++k) {
     const double t = static_cast<double>(k) * dt;
     const Measurements& m = sensors.read();          // 1
     const Commands c = manoeuvre.command(t, m, dt);  // 2
@@ -123,6 +214,9 @@ LoopResult run_closed_loop(Plant& plant, Sensors& sensors, Manoeuvre& manoeuvre,
       break;
     }
     sensors.update(std::get<PlantStep>(r), applied, dt);  // 5
+    if (!settings.checkpoint.empty() && settings.checkpoint_every > 0 && k + 1 < steps &&
+        (k + 1) % settings.checkpoint_every == 0)
+      write_checkpoint(k + 1);
     if (settings.progress && k % std::max(1, settings.progress_every) == 0) settings.progress(t);
   }
   result.series = std::move(recorder.series);

@@ -127,4 +127,24 @@ PlantResult LinearizedPlant::advance(const ActuatorValues& a, double dt) {
   return integrate(state_, dt, options_, [&](const BodyState& s) { return acceleration(s, a); });
 }
 
+void DerivativePlant::save(StateWriter& out) const {
+  out.tag("derivative plant");
+  put(out, state_);
+}
+
+void DerivativePlant::load(StateReader& in) {
+  in.expect_tag("derivative plant");
+  state_ = get_body_state(in);
+}
+
+void LinearizedPlant::save(StateWriter& out) const {
+  out.tag("linearized plant");
+  put(out, state_);
+}
+
+void LinearizedPlant::load(StateReader& in) {
+  in.expect_tag("linearized plant");
+  state_ = get_body_state(in);
+}
+
 }  // namespace auvloop::engine

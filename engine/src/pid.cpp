@@ -31,4 +31,21 @@ double HeadingPid::update(double psi_desired, double psi, double dt) {
   return gains_.kp * error_ + gains_.ki * integral_ + derivative_;
 }
 
+void HeadingPid::save(StateWriter& out) const {
+  out.put(previous_error_.has_value());
+  out.put(previous_error_.value_or(0.0));
+  out.put(error_);
+  out.put(integral_);
+  out.put(derivative_);
+}
+
+void HeadingPid::load(StateReader& in) {
+  const bool previous = in.get<bool>();
+  const auto e = in.get<double>();
+  previous_error_ = previous ? std::optional<double>(e) : std::nullopt;
+  error_ = in.get<double>();
+  integral_ = in.get<double>();
+  derivative_ = in.get<double>();
+}
+
 }  // namespace auvloop::engine

@@ -63,4 +63,51 @@ void VirtualIns::update(const PlantStep& step, const ActuatorValues& actuators, 
   m_.rpm = actuators.rpm;
 }
 
+namespace {
+void put(StateWriter& out, const Measurements& m) {
+  out.put(m.nu);
+  out.put(m.position);
+  out.put(m.attitude);
+  for (double v : {m.speed, m.beta, m.delta_r, m.delta_s, m.rpm}) out.put(v);
+}
+
+Measurements get_measurements(StateReader& in) {
+  Measurements m;
+  in.get(m.nu);
+  in.get(m.position);
+  m.attitude = in.get<EulerAngles>();
+  for (double* v : {&m.speed, &m.beta, &m.delta_r, &m.delta_s, &m.rpm}) *v = in.get<double>();
+  return m;
+}
+}  // namespace
+
+void IdealSensors::save(StateWriter& out) const {
+  out.tag("ideal sensors");
+  put(out, m_);
+}
+
+void IdealSensors::load(StateReader& in) {
+  in.expect_tag("ideal sensors");
+  m_ = get_measurements(in);
+}
+
+void VirtualIns::save(StateWriter& out) const {
+  out.tag("virtual INS");
+  put(out, m_);
+  out.put(nu_);
+  out.put(last_acceleration_);
+  out.put(attitude_);
+  out.put(have_acceleration_);
+}
+
+void VirtualIns::load(StateReader& in) {
+  in.expect_tag("virtual INS");
+  auto m = get_measurements(in);
+  in.get(nu_);
+  in.get(last_acceleration_);
+  in.get(attitude_);
+  have_acceleration_ = in.get<bool>();
+  m_ = m;
+}
+
 }  // namespace auvloop::engine

@@ -115,7 +115,30 @@ int run_worker(const WorkerArgs& args) {
   fmt::print("worker: {} ({}), {:g} s simulated at dt {:g} s\n", c.name, key, c.duration, c.dt);
   ProgressChannel progress(args.progress_fd, c.duration);
   const auto start = Clock::now();
-  const engine::CaseRun run = engine::run_case(c, [&](double t) { progress(t); });
+  // A CFD case: its straight run shared through the state directory (beside the cache), and a
+  // checkpoint in the job's directory, from which a job queued again after a stop continues.
+  engine::CaseRunOptions options;
+  options.progress = [&](double t) { progress(t); };
+  if (c.plant == engine::PlantKind::cfd) {
+    options.straight_run = args.cache_root.parent_path() / "straight-runs" /
+                           (results::content_hash(engine::straight_run_json(c)) + ".flow");
+    options.checkpoint = args.job_file.parent_path() / "loop.checkpoint";
+    options.checkpoint_key = key;
+    options.resume = true;
+  }
+  engine::CaseRun run;
+  try {
+    run = engine::run_case(c, options);
+  } catch (const std::runtime_error& e) {  // a damaged checkpoint: start afresh
+    fmt::print(stderr, "worker: {}; starting afresh\n", e.what());
+    std::filesystem::remove(options.checkpoint);
+    run = engine::run_case(c, options);
+  }
+  if (!run.straight_run.empty()) fmt::print("worker: straight run {}\n", run.straight_run);
+  if (run.straight_run_warning) fmt::print(stderr, "worker: {}\n", *run.straight_run_warning);
+  if (run.loop.resumed_at >= 0)
+    fmt::print("worker: resumed at step {} from {}\n", run.loop.resumed_at,
+               options.checkpoint.string());
   progress(c.duration);
   const double wall = std::chrono::duration<double>(Clock::now() - start).count();
   results::RunReport report{
@@ -127,6 +150,7 @@ int run_worker(const WorkerArgs& args) {
     fmt::print(stderr, "worker: the result cannot be stored: {}\n", e.what());
     return 4;
   }
+  if (!options.checkpoint.empty()) std::filesystem::remove(options.checkpoint);
   append_execution(args.executions_log, fmt::format("{} {} {:.6f}\n", key, c.name, wall));
   fmt::print("worker: {} in {:.3f} s{}\n", run.loop.failure ? "failed" : "done", wall,
              run.loop.failure ? ": " + *run.loop.failure : "");

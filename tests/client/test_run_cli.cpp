@@ -77,3 +77,21 @@ TEST(RunCli, CompareOverlaysRuns) {
   EXPECT_TRUE(std::filesystem::exists(tmp.path() / "cmp" / "heading.png"));
   EXPECT_EQ(read_json(tmp.path() / "cmp" / "comparison.json").size(), 2U);
 }
+
+// --resume: without a checkpoint the run starts afresh and leaves none behind; a damaged one is
+// refused naming it (the loop's bitwise resume is tests/engine/test_loop_checkpoint.cpp).
+TEST(RunCli, ResumeStartsAfreshWithoutACheckpointAndRefusesADamagedOne) {
+  auvloop::test::TempDir tmp;
+  const auto out = tmp.path() / "hs";
+  const auto fresh = run("run " + kExamples +
+                         "heading-step.toml --resume --checkpoint-every 5 --out " + out.string());
+  ASSERT_EQ(fresh.exit_code, 0) << fresh.output;
+  EXPECT_TRUE(std::filesystem::exists(out / "metrics.json"));
+  EXPECT_FALSE(std::filesystem::exists(tmp.path() / "hs.checkpoint"));
+  const auto damaged = tmp.write("hs.checkpoint", "not a checkpoint");
+  const auto r = run("run " + kExamples + "heading-step.toml --resume --out " + out.string());
+  EXPECT_NE(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr(damaged.string()));
+  EXPECT_THAT(r.output, HasSubstr("closed-loop checkpoint"));
+  EXPECT_TRUE(std::filesystem::exists(damaged)) << "a refused checkpoint is kept";
+}

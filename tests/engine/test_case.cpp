@@ -1,5 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Case files: the shipped examples parse and run; bad files fail with file:line and the reason.
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <regex>
 #include <sstream>
@@ -129,4 +131,54 @@ TEST(Case, CfdTableIsReadCheckedAndHashed) {
       HasSubstr("[cfd] applies to plant = \"cfd\", not \"derivative\""));
   EXPECT_THAT(error_of(example("cfd-heading-step.toml"), "relax_p = 0.3", "relax_p = 0"),
               HasSubstr("cfd.relax_p"));
+}
+
+// The straight run before t = 0 (issue 18 item 4): its key covers what it depends on and nothing
+// else; the first run computes and stores it, the second loads it and gives the same series bit
+// for bit (quickstart case, cut to the ten 2 ms start steps and two 10 ms steps).
+TEST(Case, CfdStraightRunIsStoredAndReused) {
+  std::string text = example("cfd-quickstart.toml");
+  const auto set = [&](const std::string& from, const std::string& to) {
+    const auto at = text.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    text.replace(at, from.size(), to);
+  };
+  set("duration = 1 ", "duration = 0.02 ");
+  set("spin_up = 0.2 ", "spin_up = 0 ");
+  set("outer_iterations = 5 ", "outer_iterations = 3 ");
+  const CaseSpec c = parse_case(text, "c", AUVLOOP_SOURCE_DIR);
+  const auto key = straight_run_json(c).dump();
+  auto other = c;
+  other.duration = 5;
+  other.initial_heading = 1;
+  other.cfd.horizontal = !c.cfd.horizontal;
+  EXPECT_EQ(straight_run_json(other).dump(), key) << "the manoeuvre is not the straight run's";
+  auto faster = c;
+  faster.initial_speed = 1.6;
+  auto medium = c;
+  medium.cfd.mesh = "medium";
+  auto slower_prop = c;
+  slower_prop.rpm = 1200;
+  for (const auto* d : {&faster, &medium, &slower_prop})
+    EXPECT_NE(straight_run_json(*d).dump(), key);
+
+  auvloop::test::TempDir tmp;
+  CaseRunOptions o;
+  o.straight_run = tmp.path() / "runs" / "straight.flow";
+  const auto first = run_case(c, o);
+  ASSERT_FALSE(first.loop.failure) << *first.loop.failure;
+  EXPECT_THAT(first.straight_run, HasSubstr("computed and stored"));
+  ASSERT_TRUE(std::filesystem::exists(o.straight_run));
+  const auto second = run_case(c, o);
+  ASSERT_FALSE(second.loop.failure) << *second.loop.failure;
+  EXPECT_THAT(second.straight_run, HasSubstr("loaded from"));
+  EXPECT_FALSE(second.straight_run_warning);
+  ASSERT_EQ(first.loop.series.rows(), 3U);
+  for (std::size_t i = 0; i < first.loop.series.signals().size(); ++i) {
+    const auto& a = first.loop.series.signals()[i].values;
+    const auto& b = second.loop.series.signals()[i].values;
+    ASSERT_EQ(a.size(), b.size());
+    EXPECT_EQ(0, std::memcmp(a.data(), b.data(), a.size() * sizeof(double)))
+        << first.loop.series.signals()[i].name;
+  }
 }

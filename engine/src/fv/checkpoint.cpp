@@ -17,6 +17,7 @@
 #include <fmt/format.h>
 
 #include "auvloop/engine/fv/pimple.hpp"
+#include "auvloop/engine/state_archive.hpp"
 #include "auvloop/geometry/file_io.hpp"
 
 namespace auvloop::engine::fv {
@@ -25,93 +26,62 @@ namespace {
 constexpr char kMagic[8] = {'A', 'U', 'V', 'L', 'F', 'V', 'C', 'K'};
 constexpr std::uint32_t kVersion = 3;
 
-template <class T>
-void put(std::string& out, const T& v) {
-  out.append(reinterpret_cast<const char*>(&v), sizeof(T));
-}
-void put(std::string& out, const std::vector<double>& v) {
-  if (!v.empty()) out.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(double));
-}
-
-class Reader {
- public:
-  Reader(std::string data, std::string file) : data_(std::move(data)), file_(std::move(file)) {}
-  template <class T>
-  T get() {
-    T v;
-    take(&v, sizeof(T));
-    return v;
-  }
-  void get(std::vector<double>& v) { take(v.data(), v.size() * sizeof(double)); }
-  void expect_end() const {
-    if (pos_ != data_.size())
-      throw std::runtime_error(
-          fmt::format("checkpoint {}: {} bytes beyond the data", file_, data_.size() - pos_));
-  }
-  [[nodiscard]] const std::string& file() const { return file_; }
-
- private:
-  void take(void* to, std::size_t n) {
-    if (data_.size() - pos_ < n)
-      throw std::runtime_error(fmt::format("checkpoint {}: truncated at byte {}", file_, pos_));
-    if (n == 0) return;  // an empty vector's data() may be null, which memcpy must not see
-    std::memcpy(to, data_.data() + pos_, n);
-    pos_ += n;
-  }
-  std::string data_, file_;
-  std::size_t pos_ = 0;
-};
-
-void expect_equal(const Reader& r, const char* what, std::int32_t stored, int actual) {
+void expect_equal(const StateReader& r, const char* what, std::int32_t stored, int actual) {
   if (stored != actual)
-    throw std::runtime_error(fmt::format("checkpoint {}: written for {} {}, this grid has {}",
-                                         r.file(), stored, what, actual));
+    r.fail(fmt::format("written for {} {}, this grid has {}", stored, what, actual));
 }
 }  // namespace
 
 void Pimple::write_checkpoint(const std::filesystem::path& file) const {
-  std::string out(kMagic, sizeof(kMagic));
-  put(out, kVersion);
-  put(out, static_cast<std::int32_t>(mesh_.cells()));
-  put(out, static_cast<std::int32_t>(mesh_.faces()));
-  put(out, static_cast<std::int32_t>(mesh_.boundary_faces()));
-  put(out, static_cast<std::int32_t>(steps_));
-  put(out, time_);
-  put(out, dt_);
-  put(out, dt_old_);
-  for (const auto& c : U.c) put(out, c.cells);
-  for (const auto& c : U.c) put(out, c.boundary);
-  put(out, p.cells);
-  put(out, p.boundary);
-  put(out, phi);
-  for (const auto& level : U_old_)
-    for (const auto& c : level) put(out, c);
-  for (const auto& level : phi_old_) put(out, level);
-  for (const auto& force : predictor_force_) {
-    put(out, static_cast<std::int32_t>(force.size()));
-    put(out, force);
-  }
-  const auto state = turbulence_ ? turbulence_->state() : std::vector<std::vector<double>*>{};
-  put(out, static_cast<std::int32_t>(state.size()));
-  for (const auto* a : state) {
-    put(out, static_cast<std::int32_t>(a->size()));
-    put(out, *a);
-  }
+  StateWriter out;
+  write_checkpoint(out);
   if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
-  write_file_atomically(file, out);
+  write_file_atomically(file, out.bytes());
 }
 
 void Pimple::read_checkpoint(const std::filesystem::path& file) {
-  Reader r(read_file_text(file), file.string());
-  char magic[8];
-  for (char& m : magic) m = r.get<char>();
-  if (std::memcmp(magic, kMagic, sizeof(kMagic)) != 0)
-    throw std::runtime_error(fmt::format("{} is not an auvloop flow checkpoint", file.string()));
+  StateReader r(read_file_text(file), file.string());
+  read_checkpoint(r);
+  r.expect_end();
+}
+
+void Pimple::write_checkpoint(StateWriter& out) const {
+  out.put(kMagic);
+  out.put(kVersion);
+  out.put(static_cast<std::int32_t>(mesh_.cells()));
+  out.put(static_cast<std::int32_t>(mesh_.faces()));
+  out.put(static_cast<std::int32_t>(mesh_.boundary_faces()));
+  out.put(static_cast<std::int32_t>(steps_));
+  out.put(time_);
+  out.put(dt_);
+  out.put(dt_old_);
+  for (const auto& c : U.c) out.raw(c.cells);
+  for (const auto& c : U.c) out.raw(c.boundary);
+  out.raw(p.cells);
+  out.raw(p.boundary);
+  out.raw(phi);
+  for (const auto& level : U_old_)
+    for (const auto& c : level) out.raw(c);
+  for (const auto& level : phi_old_) out.raw(level);
+  for (const auto& force : predictor_force_) {
+    out.put(static_cast<std::int32_t>(force.size()));
+    out.raw(force);
+  }
+  const auto state = turbulence_ ? turbulence_->state() : std::vector<std::vector<double>*>{};
+  out.put(static_cast<std::int32_t>(state.size()));
+  for (const auto* a : state) {
+    out.put(static_cast<std::int32_t>(a->size()));
+    out.raw(*a);
+  }
+}
+
+void Pimple::read_checkpoint(StateReader& r) {
+  const auto magic = r.get<std::array<char, 8>>();
+  if (std::memcmp(magic.data(), kMagic, sizeof(kMagic)) != 0)
+    r.fail("not an auvloop flow checkpoint");
   const auto version = r.get<std::uint32_t>();
   if (version != kVersion && version != 2)
-    throw std::runtime_error(
-        fmt::format("checkpoint {}: version {}, this build reads versions 2 and {}", file.string(),
-                    version, kVersion));
+    r.fail(fmt::format("version {}, this build reads versions 2 and {}", version, kVersion));
   expect_equal(r, "cells", r.get<std::int32_t>(), mesh_.cells());
   expect_equal(r, "faces", r.get<std::int32_t>(), mesh_.faces());
   expect_equal(r, "boundary faces", r.get<std::int32_t>(), mesh_.boundary_faces());
@@ -123,36 +93,35 @@ void Pimple::read_checkpoint(const std::filesystem::path& file) {
   auto flux = phi;
   auto u_old = U_old_;
   auto flux_old = phi_old_;
-  for (auto& c : u.c) r.get(c.cells);
-  for (auto& c : u.c) r.get(c.boundary);
-  r.get(pressure.cells);
-  r.get(pressure.boundary);
-  r.get(flux);
+  for (auto& c : u.c) r.raw(c.cells);
+  for (auto& c : u.c) r.raw(c.boundary);
+  r.raw(pressure.cells);
+  r.raw(pressure.boundary);
+  r.raw(flux);
   for (auto& level : u_old)
-    for (auto& c : level) r.get(c);
-  for (auto& level : flux_old) r.get(level);
+    for (auto& c : level) r.raw(c);
+  for (auto& level : flux_old) r.raw(level);
   auto forces = predictor_force_;
   for (auto& force : forces) {
     const auto size = r.get<std::int32_t>();
     if (size != 0) expect_equal(r, "cells (predictor force)", size, mesh_.cells());
     force.assign(static_cast<std::size_t>(size), 0.0);
-    r.get(force);
+    r.raw(force);
   }
   const auto state = turbulence_ ? turbulence_->state() : std::vector<std::vector<double>*>{};
   const auto arrays = version >= 3 ? r.get<std::int32_t>() : 0;
   if (arrays != static_cast<std::int32_t>(state.size()))
-    throw std::runtime_error(fmt::format(
-        "checkpoint {}: {} turbulence-model arrays stored, the flow's model {} ({}); attach the "
-        "same model before reading",
-        file.string(), arrays, turbulence_ ? "has" : "is laminar: it has", state.size()));
+    r.fail(fmt::format(
+        "{} turbulence-model arrays stored, the flow's model {} ({}); attach the same model "
+        "before reading",
+        arrays, turbulence_ ? "has" : "is laminar: it has", state.size()));
   std::vector<std::vector<double>> values(state.size());
   for (std::size_t i = 0; i < state.size(); ++i) {
     expect_equal(r, "values (turbulence state)", r.get<std::int32_t>(),
                  static_cast<int>(state[i]->size()));
     values[i].assign(state[i]->size(), 0.0);
-    r.get(values[i]);
+    r.raw(values[i]);
   }
-  r.expect_end();
   for (std::size_t i = 0; i < state.size(); ++i) *state[i] = std::move(values[i]);
   U = std::move(u);
   p = std::move(pressure);

@@ -55,6 +55,59 @@ const mesher::Assembly& VehicleOverset::set_fins(const std::vector<double>& defl
   return assembly_;
 }
 
+void VehicleOverset::save(StateWriter& out) const {
+  out.tag("overset assembly");
+  out.put(system_->fin_deflections);
+  out.put(static_cast<std::int64_t>(assembly_.grids.size()));
+  for (const auto& g : assembly_.grids) {
+    out.put(g.status);
+    out.put(g.donor_grid);
+    out.put(g.donor_cell);
+    out.put(g.fallback);
+    out.put(g.chained);
+    out.put(g.stencil_offsets);
+    out.put(g.stencil_grids);
+    out.put(g.stencil_cells);
+    out.put(g.stencil_weights);
+  }
+}
+
+void VehicleOverset::load(StateReader& in) {
+  in.expect_tag("overset assembly");
+  mesher::Assembly stored;
+  stored.fin_deflections = in.get_vector();
+  if (stored.fin_deflections.size() != system_->fins.size())
+    in.fail(fmt::format("{} fins stored, this system has {}", stored.fin_deflections.size(),
+                        system_->fins.size()));
+  const auto grids = in.get<std::int64_t>();
+  if (grids != static_cast<std::int64_t>(assembly_.grids.size()))
+    in.fail(fmt::format("{} grids stored, this system has {}", grids, assembly_.grids.size()));
+  for (std::size_t k = 0; k < assembly_.grids.size(); ++k) {
+    mesher::GridAssembly g;
+    g.status = in.get_vector<mesher::CellStatus>();
+    g.donor_grid = in.get_vector<int>();
+    g.donor_cell = in.get_vector<int>();
+    g.fallback = in.get_vector<char>();
+    g.chained = in.get_vector<char>();
+    g.stencil_offsets = in.get_vector<int>();
+    g.stencil_grids = in.get_vector<int>();
+    g.stencil_cells = in.get_vector<int>();
+    g.stencil_weights = in.get_vector<double>();
+    if (g.status.size() != assembly_.grids[k].status.size())
+      in.fail(fmt::format("grid {}: {} cells stored, this system has {}", k, g.status.size(),
+                          assembly_.grids[k].status.size()));
+    stored.grids.push_back(std::move(g));
+  }
+  try {
+    if (stored.fin_deflections != system_->fin_deflections) (void)set_fins(stored.fin_deflections);
+    overset_->update(mesher::composite_stencils(composite_, stored));
+  } catch (const std::invalid_argument& e) {
+    in.fail(fmt::format("the stored assembly does not fit: {}", e.what()));
+  }
+  assembly_ = std::move(stored);
+  orient();
+}
+
 void VehicleOverset::orient() {
   std::vector<Eigen::Matrix3d> orientation(system_->grids().size(), Eigen::Matrix3d::Identity());
   for (int k = 0; k < fins(); ++k)

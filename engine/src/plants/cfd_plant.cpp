@@ -243,6 +243,65 @@ std::optional<PlantFailure> CfdPlant::spin_up(const BodyState& initial, double r
   return std::nullopt;
 }
 
+namespace {
+constexpr std::string_view kPlantTag = "cfd plant";
+}
+
+void CfdPlant::save(StateWriter& out) const {
+  const auto& m = *impl_;
+  out.tag(kPlantTag);
+  out.put(std::string_view(m.settings.mesh));
+  const auto& h = dfbi_.history();
+  put(out, h.state);
+  out.put(h.nu_old);
+  out.put(h.acceleration);
+  m.sys->save(out);
+  if (m.sst) m.walls->save(out);
+  out.put(m.rates);
+  out.put(spun_up_.has_value());
+  out.put(spun_up_.value_or(Vector6d::Zero()));
+  m.flow->write_checkpoint(out);
+}
+
+void CfdPlant::load(StateReader& in) {
+  auto& m = *impl_;
+  in.expect_tag(kPlantTag);
+  if (const auto mesh = in.get_string(); mesh != m.settings.mesh)
+    in.fail(fmt::format("written on the {} mesh, this plant's is {}", mesh, m.settings.mesh));
+  DfbiHistory h;
+  h.state = get_body_state(in);
+  in.get(h.nu_old);
+  in.get(h.acceleration);
+  // The grids and the flow as at the end of the stored step: the assembly (whose statuses
+  // initialise() takes as the fields'), the wall distances, the body's motion with the fins'
+  // rates, then the fields.
+  reset(h.state);
+  try {
+    m.sys->load(in);
+    if (m.sst) {
+      m.walls->load(in);
+      m.sst->set_wall_distance(m.walls->composite());
+    }
+    auto rates = in.get_vector();
+    if (rates.size() != m.rates.size())
+      in.fail(fmt::format("{} fin rates stored, this vehicle has {} fins", rates.size(),
+                          m.rates.size()));
+    const bool spun = in.get<bool>();
+    Vector6d spun_nu;
+    in.get(spun_nu);
+    m.rates = std::move(rates);
+    dfbi_.restore(h);
+    m.move(h.state);
+    m.flow->initialise();
+    m.flow->read_checkpoint(in);
+    spun_up_ = spun ? std::optional<Vector6d>(spun_nu) : std::nullopt;
+  } catch (const std::runtime_error&) {
+    reset(BodyState{});
+    throw;
+  }
+  report_ = {};
+}
+
 PlantResult CfdPlant::advance(const ActuatorValues& a, double dt) {
   const auto t0 = std::chrono::steady_clock::now();
   auto& m = *impl_;
@@ -277,12 +336,16 @@ PlantResult CfdPlant::advance(const ActuatorValues& a, double dt) {
   // 2.
   m.rpm = a.rpm;
   m.flow->set_time_step(dt);
+  const auto tc = std::chrono::steady_clock::now();
   m.move(dfbi_.begin_step(dt, m.flow->steps() > 0));
   m.propel(dfbi_.iterate());
+  r.seconds_coupling = seconds_since(tc);
   // 3.
   m.flow->motion_correct = [&](int) {
+    const auto ti = std::chrono::steady_clock::now();
     m.move(dfbi_.correct(m.loads()));
     m.propel(dfbi_.iterate());
+    r.seconds_coupling += seconds_since(ti);
   };
   try {
     r.flow = m.flow->step();

@@ -226,4 +226,66 @@ WallDistances::Work WallDistances::refresh(bool all, std::span<const std::vector
   return work;
 }
 
+void WallDistances::save(StateWriter& out) const {
+  out.tag("wall distances");
+  out.put(static_cast<std::int64_t>(parts_.size()));
+  out.put(static_cast<std::int64_t>(groups_.size()));
+  for (const auto& a : axes_) out.put(a.matrix());
+  for (std::size_t g = 0; g < parts_.size(); ++g) {
+    out.put(static_cast<std::int64_t>(parts_[g].cells));
+    for (const auto& t : taken_at_[g]) out.put(t.matrix());
+    std::vector<double> value;
+    std::vector<char> exact;
+    for (const auto& e : entries_[g]) {
+      value.push_back(e.value);
+      exact.push_back(e.exact ? 1 : 0);
+    }
+    out.put(value);
+    out.put(exact);
+    out.put(distance_[g]);
+    out.put(static_cast<bool>(pending_[g]));
+  }
+}
+
+void WallDistances::load(StateReader& in) {
+  in.expect_tag("wall distances");
+  const auto parts = in.get<std::int64_t>(), groups = in.get<std::int64_t>();
+  if (parts != static_cast<std::int64_t>(parts_.size()) ||
+      groups != static_cast<std::int64_t>(groups_.size()))
+    in.fail(fmt::format("wall distances of {} grids and {} wall groups, these have {} and {}",
+                        parts, groups, parts_.size(), groups_.size()));
+  auto axes = axes_;
+  for (auto& a : axes) {
+    Eigen::Matrix4d m;
+    in.get(m);
+    a.matrix() = m;
+  }
+  auto taken_at = taken_at_;
+  auto entries = entries_;
+  auto distance = distance_;
+  auto pending = pending_;
+  for (std::size_t g = 0; g < parts_.size(); ++g) {
+    if (const auto cells = in.get<std::int64_t>(); cells != parts_[g].cells)
+      in.fail(fmt::format("grid {}: {} cells stored, this one has {}", g, cells, parts_[g].cells));
+    for (auto& t : taken_at[g]) {
+      Eigen::Matrix4d m;
+      in.get(m);
+      t.matrix() = m;
+    }
+    const auto value = in.get_vector<double>();
+    const auto exact = in.get_vector<char>();
+    distance[g] = in.get_vector<double>();
+    pending[g] = in.get<bool>();
+    if (value.size() != entries[g].size() || exact.size() != value.size() ||
+        distance[g].size() != distance_[g].size())
+      in.fail(fmt::format("grid {}: the entries do not match its cells and groups", g));
+    for (std::size_t i = 0; i < value.size(); ++i) entries[g][i] = {value[i], exact[i] != 0};
+  }
+  axes_ = std::move(axes);
+  taken_at_ = std::move(taken_at);
+  entries_ = std::move(entries);
+  distance_ = std::move(distance);
+  pending_ = std::move(pending);
+}
+
 }  // namespace auvloop::engine::turbulence

@@ -7,6 +7,8 @@
 
 #include <limits>
 
+#include "auvloop/engine/state_archive.hpp"
+
 namespace auvloop::engine {
 
 struct ActuatorLimits {
@@ -25,6 +27,9 @@ class FirstOrderActuator {
   // True when the amplitude or rate limit changed the last step's result.
   [[nodiscard]] bool limited() const { return limited_; }
   [[nodiscard]] const ActuatorLimits& limits() const { return limits_; }
+  // Exact checkpoint of the state (not the limits).
+  void save(StateWriter& out) const;
+  void load(StateReader& in);
 
  private:
   ActuatorLimits limits_;

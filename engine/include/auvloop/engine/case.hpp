@@ -102,7 +102,37 @@ struct CaseRun {
   LoopResult loop;
   std::string plant_name;
   std::vector<std::complex<double>> eigenvalues;  // linearized plant only
+  // A CFD case's straight run: "computed", "computed and stored in F", "loaded from F", or
+  // "in the checkpoint" (a resume); with a warning when a stored one could not be used.
+  std::string straight_run;
+  std::optional<std::string> straight_run_warning;
 };
+
+// What a CFD case's straight run before t = 0 depends on: the vehicle, the plant's settings, the
+// initial speed and rpm, dt and the spin-up time (not the manoeuvre, its controller, the heading
+// or the duration). Its content hash names the stored flow that every manoeuvre from the same
+// straight run shares.
+nlohmann::json straight_run_json(const CaseSpec& c);
 CaseRun run_case(const CaseSpec& c, const std::function<void(double t)>& progress = {});
+
+// A run that can stop and continue (closed_loop.hpp, "Checkpoints").
+struct CaseRunOptions {
+  std::function<void(double t)> progress;  // t < 0: a CFD plant's straight run before t = 0
+  std::filesystem::path checkpoint;        // the loop's checkpoint file; empty: none
+  // Simulated seconds between checkpoints; 0: 1 s on the CFD plant (100 steps of 10 ms, about
+  // two minutes of a coarse run), none on the others.
+  double checkpoint_every = 0;
+  std::string checkpoint_key;  // the case's content hash: a resume requires the same
+  bool resume = false;         // continue from `checkpoint` when it exists (a CFD plant then
+                               // skips its straight run: the flow is in the checkpoint)
+  // A CFD case's straight run before t = 0 (issue 18 item 4): loaded from this file when it
+  // holds one, else computed and stored there (atomically) for the next manoeuvre from the same
+  // straight run; the caller names it by the content hash of straight_run_json(). A damaged
+  // file is computed afresh (a warning). Empty: computed every time.
+  std::filesystem::path straight_run;
+};
+// Throws std::runtime_error naming the file when a checkpoint to resume from is another run's
+// or damaged.
+CaseRun run_case(const CaseSpec& c, const CaseRunOptions& options);
 
 }  // namespace auvloop::engine

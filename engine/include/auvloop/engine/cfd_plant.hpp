@@ -83,7 +83,10 @@ struct CfdStepReport {
   std::vector<double> deflections;                            // rad, per fin
   double coupling_change = 0;  // Dfbi::change() of the last correction (m/s^2, rad/s^2)
   fv::StepReport flow;
-  double seconds = 0, seconds_fins = 0;  // wall clock: the whole advance, the fins' update
+  // Wall clock: the whole advance; the fins' update (re-assembly, wall distances); the coupling
+  // between outer iterations (the wall loads, the 6-DOF correction, the grids' motion, the disk).
+  // The flow's own phases are in `flow`.
+  double seconds = 0, seconds_fins = 0, seconds_coupling = 0;
 };
 
 class CfdPlant final : public Plant {
@@ -113,6 +116,12 @@ class CfdPlant final : public Plant {
   static constexpr double kStartDt = 0.002;  // s
   PlantResult advance(const ActuatorValues& actuators, double dt) override;
   [[nodiscard]] const BodyState& state() const override { return dfbi_.state(); }
+  // Exact checkpoint: the body (Dfbi::history), the fins' deflections, the flow with its old time
+  // levels and the turbulence model's fields (fv::Pimple::write_checkpoint), and whether the flow
+  // is spin_up()'s. load() re-assembles the grids at the stored deflections first; it throws
+  // std::runtime_error on a record of another grid (the plant is then as after reset()).
+  void save(StateWriter& out) const override;
+  void load(StateReader& in) override;
 
   [[nodiscard]] const CfdStepReport& last() const { return report_; }
   [[nodiscard]] const fv::Pimple& flow() const;

@@ -8,8 +8,15 @@
 //   5. the sensors integrate the plant's accelerations and rates into the state of t_{k+1}.
 // Every signal is recorded at every t_k, angles in degrees. A plant failure stops the run; what
 // was recorded up to the last good step is kept and the failure is reported.
+// Checkpoints: with LoopSettings::checkpoint set, after every checkpoint_every-th step the loop's
+// whole state (the next step's number, the plant's, the sensors', the manoeuvre's and the
+// actuators' states, the series so far, and checkpoint_key: what the run is computed from) is
+// written to that file atomically; with `resume` and the file present, the loop continues from
+// it instead of from `initial`, bitwise as if it had never stopped (the components' save/load
+// contracts). A checkpoint that cannot be written is reported and the run goes on.
 #pragma once
 
+#include <filesystem>
 #include <functional>
 #include <limits>
 #include <optional>
@@ -34,6 +41,9 @@ class Manoeuvre {
  public:
   virtual ~Manoeuvre() = default;
   virtual Commands command(double t, const Measurements& m, double dt) = 0;
+  // Exact checkpoint of the state (a controller's integral, a zig-zag's direction).
+  virtual void save(StateWriter& out) const = 0;
+  virtual void load(StateReader& in) = 0;
 };
 
 // Heading step: the PID tracks psi_desired from t = 0; propeller speed is held at `rpm`.
@@ -42,6 +52,8 @@ class HeadingStep final : public Manoeuvre {
  public:
   HeadingStep(double psi_desired, PidGains gains, PidOptions options, double rpm);
   Commands command(double t, const Measurements& m, double dt) override;
+  void save(StateWriter& out) const override;
+  void load(StateReader& in) override;
 
  private:
   double psi_desired_, rpm_;
@@ -55,6 +67,8 @@ class RudderRamp final : public Manoeuvre {
   enum class Surface { rudder, stern_plane };
   RudderRamp(Surface surface, double angle, double rate, double start, double rpm);
   Commands command(double t, const Measurements& m, double dt) override;
+  void save(StateWriter& out) const override;
+  void load(StateReader& in) override;
 
  private:
   Surface surface_;
@@ -67,6 +81,8 @@ class ZigZag final : public Manoeuvre {
  public:
   ZigZag(double rudder, double switch_heading, double initial_heading, double rpm);
   Commands command(double t, const Measurements& m, double dt) override;
+  void save(StateWriter& out) const override;
+  void load(StateReader& in) override;
 
  private:
   double rudder_, switch_, psi0_, rpm_;
@@ -80,6 +96,8 @@ struct Actuators {
   [[nodiscard]] ActuatorValues values() const {
     return {rudder.value(), stern_plane.value(), propeller.value()};
   }
+  void save(StateWriter& out) const;
+  void load(StateReader& in);
 };
 
 struct LoopSettings {
@@ -87,12 +105,18 @@ struct LoopSettings {
   double duration = 30;                    // s
   std::function<void(double t)> progress;  // called now and then with the simulated time...
   int progress_every = 100;                // ...every this many steps (a CFD plant: every one)
+  std::filesystem::path checkpoint;        // empty: none
+  long checkpoint_every = 0;               // steps; 0: none written
+  std::string checkpoint_key;              // stored, and required equal on a resume
+  bool resume = false;                     // continue from `checkpoint` when it exists
 };
 
 struct LoopResult {
   TimeSeries series;
   std::optional<std::string> failure;  // set when the plant diverged; series ends at last good step
   double final_time = 0;
+  long resumed_at = -1;                           // the step a resume continued from, or -1
+  std::optional<std::string> checkpoint_warning;  // the last checkpoint that failed to write
 };
 
 LoopResult run_closed_loop(Plant& plant, Sensors& sensors, Manoeuvre& manoeuvre,

@@ -25,6 +25,8 @@ class DerivativePlant final : public Plant {
   PlantResult advance(const ActuatorValues& a, double dt) override;
   [[nodiscard]] const BodyState& state() const override { return state_; }
   [[nodiscard]] const PresteroModel& model() const { return model_; }
+  void save(StateWriter& out) const override;
+  void load(StateReader& in) override;
 
  private:
   PresteroModel model_;
@@ -62,6 +64,8 @@ class LinearizedPlant final : public Plant {
   PlantResult advance(const ActuatorValues& a, double dt) override;
   [[nodiscard]] const BodyState& state() const override { return state_; }
   [[nodiscard]] const Linearization& linearization() const { return lin_; }
+  void save(StateWriter& out) const override;
+  void load(StateReader& in) override;
 
  private:
   [[nodiscard]] Vector6d acceleration(const BodyState& s, const ActuatorValues& a) const;

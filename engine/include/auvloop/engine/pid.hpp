@@ -13,6 +13,8 @@
 #include <limits>
 #include <optional>
 
+#include "auvloop/engine/state_archive.hpp"
+
 namespace auvloop::engine {
 
 struct PidGains {
@@ -35,6 +37,9 @@ class HeadingPid {
   double update(double psi_desired, double psi, double dt);
   [[nodiscard]] double error() const { return error_; }
   [[nodiscard]] double integral() const { return integral_; }
+  // Exact checkpoint of the state (not the gains).
+  void save(StateWriter& out) const;
+  void load(StateReader& in);
 
  private:
   PidGains gains_;

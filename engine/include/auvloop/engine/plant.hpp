@@ -14,6 +14,7 @@
 #include <variant>
 
 #include "auvloop/engine/rigid_body.hpp"
+#include "auvloop/engine/state_archive.hpp"
 
 namespace auvloop::engine {
 
@@ -41,6 +42,15 @@ class Plant {
   virtual void reset(const BodyState& initial) = 0;
   virtual PlantResult advance(const ActuatorValues& actuators, double dt) = 0;
   [[nodiscard]] virtual const BodyState& state() const = 0;
+  // Exact checkpoint (the closed loop's, closed_loop.hpp): everything the next advance() reads
+  // besides the construction's settings, so that a plant built alike and loaded continues
+  // bitwise. The defaults throw std::runtime_error (a plant without one); load() throws
+  // std::runtime_error on a record of another plant or grid, leaving the plant unchanged.
+  virtual void save(StateWriter& out) const;
+  virtual void load(StateReader& in);
 };
+
+void put(StateWriter& out, const BodyState& s);
+BodyState get_body_state(StateReader& in);
 
 }  // namespace auvloop::engine

@@ -29,6 +29,9 @@ class Sensors {
   // Called after each plant step with the step's result and the actuator values it used.
   virtual void update(const PlantStep& step, const ActuatorValues& actuators, double dt) = 0;
   [[nodiscard]] virtual const Measurements& read() const = 0;
+  // Exact checkpoint of the state (closed_loop.hpp).
+  virtual void save(StateWriter& out) const = 0;
+  virtual void load(StateReader& in) = 0;
 };
 
 class IdealSensors final : public Sensors {
@@ -36,6 +39,8 @@ class IdealSensors final : public Sensors {
   void reset(const BodyState& initial, const ActuatorValues& actuators) override;
   void update(const PlantStep& step, const ActuatorValues& actuators, double dt) override;
   [[nodiscard]] const Measurements& read() const override { return m_; }
+  void save(StateWriter& out) const override;
+  void load(StateReader& in) override;
 
  private:
   Measurements m_;
@@ -46,6 +51,8 @@ class VirtualIns final : public Sensors {
   void reset(const BodyState& initial, const ActuatorValues& actuators) override;
   void update(const PlantStep& step, const ActuatorValues& actuators, double dt) override;
   [[nodiscard]] const Measurements& read() const override { return m_; }
+  void save(StateWriter& out) const override;
+  void load(StateReader& in) override;
 
  private:
   Measurements m_;

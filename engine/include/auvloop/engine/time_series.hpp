@@ -6,6 +6,8 @@
 #include <string_view>
 #include <vector>
 
+#include "auvloop/engine/state_archive.hpp"
+
 namespace auvloop::engine {
 
 struct Signal {
@@ -25,6 +27,10 @@ class TimeSeries {
   [[nodiscard]] std::size_t rows() const {
     return signals_.empty() ? 0 : signals_.front().values.size();
   }
+  // Exact checkpoint of the values; load() requires the same columns (names) and throws
+  // std::runtime_error otherwise, leaving the series unchanged.
+  void save(StateWriter& out) const;
+  void load(StateReader& in);
 
  private:
   std::vector<Signal> signals_;

@@ -22,6 +22,7 @@
 #include "auvloop/engine/fv/operators.hpp"
 #include "auvloop/engine/fv/overset.hpp"
 #include "auvloop/engine/fv/turbulence_model.hpp"
+#include "auvloop/engine/state_archive.hpp"
 
 namespace auvloop::engine::fv {
 
@@ -204,6 +205,10 @@ class Pimple {
   // foreign, other-version, other-grid or truncated file, leaving the solver unchanged.
   void write_checkpoint(const std::filesystem::path& file) const;
   void read_checkpoint(const std::filesystem::path& file);
+  // The same record within a larger one (a plant's, the closed loop's checkpoint); the reader
+  // stops after the flow's part.
+  void write_checkpoint(StateWriter& out) const;
+  void read_checkpoint(StateReader& in);
   // Sets the time step of the following steps (prescribed sequences; the adaptive control
   // overrides it). Throws std::invalid_argument unless dt > 0.
   void set_time_step(double dt);

@@ -23,6 +23,7 @@
 #include "auvloop/engine/fv/mesh.hpp"
 #include "auvloop/engine/fv/motion.hpp"
 #include "auvloop/engine/fv/overset.hpp"
+#include "auvloop/engine/state_archive.hpp"
 #include "auvloop/geometry/vehicle.hpp"
 #include "auvloop/mesher/composite_grid.hpp"
 #include "auvloop/mesher/grid_system.hpp"
@@ -56,6 +57,13 @@ class VehicleOverset {
   // Step 1 (rad, one per fin). Throws std::invalid_argument for a wrong count or an orphan,
   // keeping the previous deflections and coupling.
   const mesher::Assembly& set_fins(const std::vector<double>& deflections);
+  // Exact checkpoint: the deflections and the assembly. An incremental update keeps a fringe
+  // cell's donor while it still contains the centre, so the stencils depend on the path of
+  // deflections, not on the present ones alone; load() moves the fins to the stored deflections
+  // and then takes the stored assembly, so that the next set_fins() is as it would have been.
+  // Throws std::runtime_error on a record of another system, keeping the present state.
+  void save(StateWriter& out) const;
+  void load(StateReader& in);
   [[nodiscard]] const std::vector<double>& deflections() const { return system_->fin_deflections; }
   [[nodiscard]] const mesher::Assembly& assembly() const { return assembly_; }
   // Fin k's axes in the body frame relative to where it was merged.

@@ -43,6 +43,7 @@
 #include <Eigen/Geometry>
 
 #include "auvloop/engine/fv/mesh.hpp"
+#include "auvloop/engine/state_archive.hpp"
 #include "auvloop/geometry/triangle_distance.hpp"
 
 namespace auvloop::engine::turbulence {
@@ -84,6 +85,12 @@ class WallDistances {
               std::span<const std::vector<char>> needed = {});
   // The construction's work (every pair changed: one bound per entry).
   [[nodiscard]] const Work& initial_work() const { return initial_; }
+  // Exact checkpoint of the entries, their placements and the distances. A cell not needed at an
+  // update keeps its last distance, so those depend on the path of the placements; a restored
+  // object continues as the saved one would (the placements are the caller's to restore).
+  // load() throws std::runtime_error on a record of other grids, keeping the present state.
+  void save(StateWriter& out) const;
+  void load(StateReader& in);
 
  private:
   struct Group {
