@@ -35,7 +35,7 @@ int main(int argc, char** argv) {
   std::string mesh = "coarse", free = "none", csv, convection = "linear-upwind-limited";
   double dt = 0.01, time = 2, speed = 1.54, rpm = 1500, pitch_ratio = 0.5, j_scale = 1;
   int threads = 2, outer = 5, every = 10, start_steps = 0;
-  double start_dt = 0.002, nu = engine::CfdPlantSettings{}.nu;
+  double start_dt = 0.002, nu = engine::CfdPlantSettings{}.nu, intermediate_tolerance = 0;
   app.add_option("--mesh", mesh, "mesh preset")->check(CLI::IsMember({"coarse", "medium", "fine"}));
   app.add_option("--dt", dt, "time step (s)")->check(CLI::PositiveNumber);
   app.add_option("--start-steps", start_steps,
@@ -48,6 +48,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"none", "surge", "horizontal", "6dof"}));
   app.add_option("--pitch-ratio", pitch_ratio, "B-series P/D of the curve's shape");
   app.add_option("--j-scale", j_scale, "KT(J) = KT_B(J / j_scale)")->check(CLI::PositiveNumber);
+  app.add_option("--intermediate-tolerance", intermediate_tolerance,
+                 "pressure tolerance of the outer iterations but the last (0: 1e-8)");
   app.add_option("--nu", nu, "kinematic viscosity (m^2/s)")->check(CLI::PositiveNumber);
   app.add_option("--outer", outer, "outer iterations per step")->check(CLI::PositiveNumber);
   app.add_option("--threads", threads, "threads")->check(CLI::PositiveNumber);
@@ -66,6 +68,7 @@ int main(int argc, char** argv) {
   s.mesh = mesh;
   s.outer_iterations = outer;
   s.nu = nu;
+  s.intermediate_tolerance = intermediate_tolerance;
   s.reference_speed = speed;
   s.convection = engine::fv::convection_from_string(convection);
   s.relax_u = relax_u;

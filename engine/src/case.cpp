@@ -145,6 +145,8 @@ void read_cfd(Table root, CaseSpec& c) {
   f.spin_up = t->number_or("spin_up", 1.0, Range::closed(0, 600), "s");
   f.relax_u = t->number_or("relax_u", 0.7, Range::open_closed(0, 1), "");
   f.relax_p = t->number_or("relax_p", 0.3, Range::open_closed(0, 1), "");
+  f.intermediate_tolerance =
+      t->number_or("intermediate_tolerance", 1e-4, Range::closed(1e-10, 0.1), "");
   t->finish();
 }
 
@@ -270,7 +272,8 @@ nlohmann::json canonical_json(const CaseSpec& c) {
                 {"dof", c.cfd.horizontal ? "horizontal" : "6dof"},
                 {"spin_up_s", c.cfd.spin_up},
                 {"relax_u", c.cfd.relax_u},
-                {"relax_p", c.cfd.relax_p}};
+                {"relax_p", c.cfd.relax_p},
+                {"intermediate_tolerance", c.cfd.intermediate_tolerance}};
     j["vehicle"]["propeller"] = {{"open_water", {{"J", w.J}, {"KT", w.KT}, {"KQ", w.KQ}}}};
   }
   std::visit(
@@ -387,6 +390,7 @@ CaseRun run_case(const CaseSpec& c, const CaseRunOptions& options) {
     if (c.cfd.horizontal) s.free = DfbiBody::horizontal;
     s.relax_u = c.cfd.relax_u;
     s.relax_p = c.cfd.relax_p;
+    s.intermediate_tolerance = c.cfd.intermediate_tolerance;
     s.reference_speed = std::max(c.initial_speed, 0.1);
     s.added_mass = prestero_added_mass(c.vehicle.hydrodynamics);
     s.neutral_buoyancy = c.buoyancy == Buoyancy::neutral;

@@ -383,16 +383,17 @@ void LinearSolver::plan_symmetric(const Matrix& m, SymmetricMethod method) {
 }
 
 SolveStats LinearSolver::solve_symmetric(const Matrix& m, std::span<double> x,
-                                         SymmetricMethod method) {
+                                         SymmetricMethod method, double tolerance) {
   const Team::Region team(threads());  // the solve's loops on one team (team.hpp)
   auto& I = *impl_;
+  const Tolerance tol = tolerance > 0 ? Tolerance(tolerance, I.tolerance.norm) : I.tolerance;
   // CG and CHOLMOD want a positive definite matrix: the Laplacian is negative definite, so solve
   // (-A) x = -b.
   const bool changed = I.load(m, -1.0);
   if (method == SymmetricMethod::cg_amg)
-    return I.amg_for_csr().solve(I.csr, changed, I.b, x, I.tolerance, 2000);
+    return I.amg_for_csr().solve(I.csr, changed, I.b, x, tol, 2000);
   if (method == SymmetricMethod::cg_jacobi) {
-    return jacobi_cg(I.csr, I.b, x, I.tolerance, 20000, I.work);
+    return jacobi_cg(I.csr, I.b, x, tol, 20000, I.work);
   }
   SolveStats stats;
   I.residuals(x, stats, true);
@@ -425,9 +426,9 @@ SolveStats LinearSolver::solve_symmetric(const Matrix& m, std::span<double> x,
     Eigen::ConjugateGradient<Sparse, Eigen::Lower | Eigen::Upper,
                              Eigen::IncompleteCholesky<double, Eigen::Lower>>
         cg;
-    stats.iterations = iterate(cg, E.A, I.b, x, I.tolerance.value);
+    stats.iterations = iterate(cg, E.A, I.b, x, tol.value);
   } else {  // cg_dic
-    stats.iterations = dic_pcg(I.mesh, -m, x, I.tolerance.value, 20000);
+    stats.iterations = dic_pcg(I.mesh, -m, x, tol.value, 20000);
   }
   I.residuals(x, stats, false);
   return stats;
@@ -478,7 +479,8 @@ void LinearSolver::plan_coupled(const Matrix& m, const ExtraEntries& extra) {
 }
 
 SolveStats LinearSolver::solve_bordered(const Matrix& m, const Border& border, std::span<double> x,
-                                        std::span<double> lambda, SymmetricMethod method) {
+                                        std::span<double> lambda, SymmetricMethod method,
+                                        double tolerance) {
   // cg-amg's flexible CG with the border on every level of its multigrid (amg_pcg.hpp, steps B).
   // On the REMUS coarse system (remus-overset-sst's set-up, a fin turning) 105-109 pressure
   // iterations a step against 91 without the balance; flexible GMRES preconditioned by a block
@@ -509,8 +511,9 @@ SolveStats LinearSolver::solve_bordered(const Matrix& m, const Border& border, s
     b[nu + k] = -border.columns[k].rhs;
     xl[nu + k] = lambda[k];
   }
-  const SolveStats stats = I.amg_for_csr().solve_bordered(I.csr, changed, border, -1.0, b, xl,
-                                                          I.tolerance, kMaxIterations);
+  const Tolerance tol = tolerance > 0 ? Tolerance(tolerance, I.tolerance.norm) : I.tolerance;
+  const SolveStats stats =
+      I.amg_for_csr().solve_bordered(I.csr, changed, border, -1.0, b, xl, tol, kMaxIterations);
   std::copy(xl.begin(), xl.begin() + static_cast<std::ptrdiff_t>(nu), x.begin());
   for (std::size_t k = 0; k < K; ++k) lambda[k] = xl[nu + k];
   return stats;

@@ -142,7 +142,7 @@ void Pimple::transpose_stress() {
     parallel_for(mesh_.cells(), [&](int c) { t[static_cast<std::size_t>(c)] /= mesh_.volume(c); });
 }
 
-void Pimple::solve_momentum(StepReport& r, bool first) {
+void Pimple::solve_momentum(StepReport& r, bool first, bool final) {
   // The first outer iteration of a step applies the force that balanced the last step's final
   // corrector (pimple.hpp, predictor_force_); later ones grad(p) of the previous iteration.
   const bool use_force = first && std::any_of(predictor_force_.begin(), predictor_force_.end(),
@@ -172,11 +172,12 @@ void Pimple::solve_momentum(StepReport& r, bool first) {
     eq.add_rhs(mesh_, rhs);
     const auto s =
         solve_named(mesh_, eq, U.c[i].cells, fmt::format("momentum equation U{}", "xyz"[i]), [&] {
+          const double tol = !final && settings_.intermediate_tolerance > 0
+                                 ? settings_.intermediate_tolerance
+                                 : settings_.momentum_tolerance;  // 0: the solver's own
           if (implicit_overset())
-            return solver_.solve_coupled(eq, momentum_.extra[i], U.c[i].cells, std::nullopt,
-                                         settings_.momentum_tolerance);
-          return solver_.solve_asymmetric(eq, U.c[i].cells, settings_.momentum_solver,
-                                          settings_.momentum_tolerance);
+            return solver_.solve_coupled(eq, momentum_.extra[i], U.c[i].cells, std::nullopt, tol);
+          return solver_.solve_asymmetric(eq, U.c[i].cells, settings_.momentum_solver, tol);
         });
     eq.source.swap(work_.source);
     r.momentum_iterations += s.iterations;

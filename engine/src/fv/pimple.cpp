@@ -265,7 +265,7 @@ StepReport Pimple::step() {
       apply_slip();
       assemble_momentum(final);
       r.seconds_assembly += seconds_since(t0);
-      solve_momentum(r, outer == 1);
+      solve_momentum(r, outer == 1, final);
       r.seconds_momentum += seconds_since(t0);
       t0 = std::chrono::steady_clock::now();
       shift_current_ = false;  // a new momentum matrix: a new pressure matrix
@@ -282,6 +282,7 @@ StepReport Pimple::step() {
         in.time = time_scheme();
         in.steady = settings_.steady;
         in.final = final;
+        in.intermediate_tolerance = settings_.intermediate_tolerance;
         in.solver = &solver_;
         r.turbulence.add(turbulence_->correct(in));
         r.seconds_turbulence += seconds_since(t0);

@@ -236,14 +236,16 @@ void Pimple::correct_pressure(StepReport& r, bool first, bool final) {
       const auto ref = static_cast<std::size_t>(reference_cell_);
       eq.diag[ref] += eq.diag[ref];
     }
+    const double tol = final ? 0.0 : settings_.intermediate_tolerance;  // 0: the solver's own
     const auto s = solve_named(mesh_, eq, p.cells, "pressure equation", [&] {
       if (bordered) {
         W.lambda.resize(open_components_.size(), 0.0);  // the last corrector's: a first guess
-        return solver_.solve_bordered(eq, W.border, p.cells, W.lambda, *settings_.pressure_solver);
+        return solver_.solve_bordered(eq, W.border, p.cells, W.lambda, *settings_.pressure_solver,
+                                      tol);
       }
       if (implicit_overset())
-        return solver_.solve_coupled(eq, pressure_extra_, p.cells, settings_.pressure_solver);
-      return solver_.solve_symmetric(eq, p.cells, *settings_.pressure_solver);
+        return solver_.solve_coupled(eq, pressure_extra_, p.cells, settings_.pressure_solver, tol);
+      return solver_.solve_symmetric(eq, p.cells, *settings_.pressure_solver, tol);
     });
     if (first && corr == 0) r.pressure_residual = s.initial_residual;
     r.pressure_iterations += s.iterations;

@@ -46,6 +46,8 @@ void check(const CfdPlantSettings& s) {
   if (s.sense != 1 && s.sense != -1)
     bad(fmt::format("the propeller's sense must be +1 or -1, got {}", s.sense));
   if (!(s.runaway_speed > 0)) bad("runaway_speed must be positive");
+  if (!(s.intermediate_tolerance >= 0 && s.intermediate_tolerance < 1))
+    bad(fmt::format("intermediate_tolerance must be in [0, 1), got {}", s.intermediate_tolerance));
 }
 }  // namespace
 
@@ -129,6 +131,7 @@ CfdPlant::CfdPlant(const geometry::Vehicle& vehicle, CfdPlantSettings settings)
   ps.convection = s.convection;
   ps.relax_u = s.relax_u;
   ps.relax_p = s.relax_p;
+  ps.intermediate_tolerance = s.intermediate_tolerance;
   // The nose rim's and fin roots' tiny cells pass Courant numbers of several hundred at 2 ms
   // and five times that at 10 ms while the flow stays smooth (measured): a guard against a
   // runaway only.

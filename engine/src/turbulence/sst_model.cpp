@@ -363,8 +363,9 @@ fv::TurbulenceReport SstModel::correct(const fv::TurbulenceInput& in) {
     });
     eq_.scale_rows(mesh_, *scale);
     const auto stats = fv::solve_named(mesh_, eq_, phi_field.cells, name, [&] {
-      return in.solver->solve_asymmetric(eq_, phi_field.cells, settings_.solver,
-                                         settings_.tolerance);
+      const double tol = !in.final && in.intermediate_tolerance > 0 ? in.intermediate_tolerance
+                                                                    : settings_.tolerance;
+      return in.solver->solve_asymmetric(eq_, phi_field.cells, settings_.solver, tol);
     });
     residual = stats.initial_residual;
     iterations = stats.iterations;

@@ -30,6 +30,8 @@ struct CfdSpec {
   bool horizontal = false;  // dof = "horizontal" (surge, sway, yaw) | "6dof"
   double spin_up = 1.0;     // s of straight running, towed, before the manoeuvre's t = 0
   double relax_u = 0.7, relax_p = 0.3;  // outer iterations but the last
+  // The linear solves' relative tolerance in the outer iterations but the last (the last: 1e-8)
+  double intermediate_tolerance = 1e-4;
 };
 
 struct HeadingStepSpec {

@@ -54,6 +54,9 @@ struct CfdPlantSettings {
   fv::Convection convection = fv::Convection::linear_upwind_limited;
   // Under-relaxation of U and p in every outer iteration but the last (fv::PimpleSettings).
   double relax_u = 1.0, relax_p = 1.0;
+  // The linear solves' relative tolerance in the outer iterations but the last (0: the last
+  // one's, 1e-8; fv::PimpleSettings::intermediate_tolerance).
+  double intermediate_tolerance = 0;
   // Degrees of freedom (u v w p q r): all, or DfbiBody::horizontal.
   std::array<bool, 6> free{true, true, true, true, true, true};
   double relax = 1.0;  // of the body's acceleration in the coupling

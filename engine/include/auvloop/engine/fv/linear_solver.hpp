@@ -123,7 +123,9 @@ class LinearSolver {
   LinearSolver& operator=(const LinearSolver&) = delete;
 
   // Solves A x = source for a symmetric matrix (upper == lower); x holds the initial guess.
-  SolveStats solve_symmetric(const Matrix& m, std::span<double> x, SymmetricMethod method);
+  // `tolerance` > 0 replaces the solver's own value for this solve (the iterative methods').
+  SolveStats solve_symmetric(const Matrix& m, std::span<double> x, SymmetricMethod method,
+                             double tolerance = 0);
   // The structure a method builds once from the first matrix it solves (cg-amg's aggregates),
   // built from `m` instead (same pattern, any coefficients); other methods ignore it. A matrix
   // that depends on the grid alone (a geometric Laplacian) makes the later solves independent
@@ -148,7 +150,7 @@ class LinearSolver {
   // multigrid as rows of their own (never aggregated). `method` must be cg_amg
   // (std::invalid_argument otherwise).
   SolveStats solve_bordered(const Matrix& m, const Border& border, std::span<double> x,
-                            std::span<double> lambda, SymmetricMethod method);
+                            std::span<double> lambda, SymmetricMethod method, double tolerance = 0);
 
  private:
   struct Impl;

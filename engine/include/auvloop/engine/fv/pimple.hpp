@@ -74,6 +74,11 @@ struct PimpleSettings {
   AsymmetricMethod momentum_solver = AsymmetricMethod::bicgstab_jacobi;
   double tolerance = 1e-8;        // tolerance of the iterative linear solvers, in...
   double momentum_tolerance = 0;  // the momentum predictor's, if > 0 (else `tolerance`)
+  // The linear solves' tolerance (pressure, momentum, a turbulence model's) in the outer
+  // iterations but the last, if > 0 (else their own): those iterates only carry the outer loop
+  // to the step's solution, which the last iteration's solves reach at their own tolerance
+  // (OpenFOAM's p and pFinal, U and UFinal).
+  double intermediate_tolerance = 0;
   // ...this norm (linear_solver.hpp); `normalised` with 1e-6 / 1e-5 is OpenFOAM's p / U setting
   // in its tutorials and in bench/openfoam_cavity.sh.
   ResidualNorm residual_norm = ResidualNorm::relative;
@@ -231,7 +236,7 @@ class Pimple {
   // correctors and the next momentum assembly see the same U (the grid's geometry is fixed).
   const std::array<std::vector<Eigen::Vector3d>, 3>& velocity_gradient();
   void transpose_stress();
-  void solve_momentum(StepReport& r, bool first);
+  void solve_momentum(StepReport& r, bool first, bool final);
   void correct_pressure(StepReport& r, bool first, bool final);
   // The face flux phi = phiHbyA - Df (grad p)_f of the pressure cells `pc` (the corrector's
   // phiHbyA, Df and, when `corrected`, its explicit non-orthogonal part), faces masked.

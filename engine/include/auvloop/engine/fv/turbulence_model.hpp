@@ -49,6 +49,8 @@ struct TurbulenceInput {
   TimeScheme time;              // this step's scheme (Euler on the first step)
   bool steady = false;          // no time derivative (PimpleSettings::steady)
   bool final = false;           // the step's final outer iteration: no under-relaxation
+  // > 0: the relative tolerance of the solves when not final (PimpleSettings).
+  double intermediate_tolerance = 0;
   LinearSolver* solver = nullptr;
 };
 
