@@ -146,7 +146,7 @@ void read_cfd(Table root, CaseSpec& c) {
   f.relax_u = t->number_or("relax_u", 0.7, Range::open_closed(0, 1), "");
   f.relax_p = t->number_or("relax_p", 0.3, Range::open_closed(0, 1), "");
   f.intermediate_tolerance =
-      t->number_or("intermediate_tolerance", 1e-4, Range::closed(1e-10, 0.1), "");
+      t->number_or("intermediate_tolerance", 1e-4, Range::closed(0, 0.1), "");
   t->finish();
 }
 

@@ -48,7 +48,7 @@ void StateReader::expect_end() const {
 }
 
 void StateReader::fail(std::string_view what) const {
-  throw std::runtime_error(fmt::format("checkpoint {}, byte {}: {}", source_, pos_, what));
+  throw CheckpointError(fmt::format("checkpoint {}, byte {}: {}", source_, pos_, what));
 }
 
 }  // namespace auvloop::engine

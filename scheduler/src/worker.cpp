@@ -129,9 +129,11 @@ int run_worker(const WorkerArgs& args) {
   engine::CaseRun run;
   try {
     run = engine::run_case(c, options);
-  } catch (const std::runtime_error& e) {  // a damaged checkpoint: start afresh
+  } catch (const engine::CheckpointError& e) {  // a damaged or foreign checkpoint: afresh
     fmt::print(stderr, "worker: {}; starting afresh\n", e.what());
-    std::filesystem::remove(options.checkpoint);
+    std::error_code ignored;
+    std::filesystem::remove(options.checkpoint, ignored);
+    options.resume = false;
     run = engine::run_case(c, options);
   }
   if (!run.straight_run.empty()) fmt::print("worker: straight run {}\n", run.straight_run);
@@ -150,7 +152,10 @@ int run_worker(const WorkerArgs& args) {
     fmt::print(stderr, "worker: the result cannot be stored: {}\n", e.what());
     return 4;
   }
-  if (!options.checkpoint.empty()) std::filesystem::remove(options.checkpoint);
+  if (!options.checkpoint.empty()) {
+    std::error_code ignored;
+    std::filesystem::remove(options.checkpoint, ignored);
+  }
   append_execution(args.executions_log, fmt::format("{} {} {:.6f}\n", key, c.name, wall));
   fmt::print("worker: {} in {:.3f} s{}\n", run.loop.failure ? "failed" : "done", wall,
              run.loop.failure ? ": " + *run.loop.failure : "");

@@ -41,8 +41,7 @@ void Pimple::write_checkpoint(const std::filesystem::path& file) const {
 
 void Pimple::read_checkpoint(const std::filesystem::path& file) {
   StateReader r(read_file_text(file), file.string());
-  read_checkpoint(r);
-  r.expect_end();
+  read_checkpoint(r, true);
 }
 
 void Pimple::write_checkpoint(StateWriter& out) const {
@@ -75,7 +74,7 @@ void Pimple::write_checkpoint(StateWriter& out) const {
   }
 }
 
-void Pimple::read_checkpoint(StateReader& r) {
+void Pimple::read_checkpoint(StateReader& r, bool whole) {
   const auto magic = r.get<std::array<char, 8>>();
   if (std::memcmp(magic.data(), kMagic, sizeof(kMagic)) != 0)
     r.fail("not an auvloop flow checkpoint");
@@ -122,6 +121,7 @@ void Pimple::read_checkpoint(StateReader& r) {
     values[i].assign(state[i]->size(), 0.0);
     r.raw(values[i]);
   }
+  if (whole) r.expect_end();  // before anything changes
   for (std::size_t i = 0; i < state.size(); ++i) *state[i] = std::move(values[i]);
   U = std::move(u);
   p = std::move(pressure);

@@ -172,9 +172,8 @@ void Pimple::solve_momentum(StepReport& r, bool first, bool final) {
     eq.add_rhs(mesh_, rhs);
     const auto s =
         solve_named(mesh_, eq, U.c[i].cells, fmt::format("momentum equation U{}", "xyz"[i]), [&] {
-          const double tol = !final && settings_.intermediate_tolerance > 0
-                                 ? settings_.intermediate_tolerance
-                                 : settings_.momentum_tolerance;  // 0: the solver's own
+          const double loose = loose_tolerance(final);
+          const double tol = loose > 0 ? loose : settings_.momentum_tolerance;  // 0: its own
           if (implicit_overset())
             return solver_.solve_coupled(eq, momentum_.extra[i], U.c[i].cells, std::nullopt, tol);
           return solver_.solve_asymmetric(eq, U.c[i].cells, settings_.momentum_solver, tol);

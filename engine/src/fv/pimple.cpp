@@ -282,7 +282,7 @@ StepReport Pimple::step() {
         in.time = time_scheme();
         in.steady = settings_.steady;
         in.final = final;
-        in.intermediate_tolerance = settings_.intermediate_tolerance;
+        in.intermediate_tolerance = loose_tolerance(false);
         in.solver = &solver_;
         r.turbulence.add(turbulence_->correct(in));
         r.seconds_turbulence += seconds_since(t0);

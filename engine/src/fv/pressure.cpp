@@ -236,7 +236,7 @@ void Pimple::correct_pressure(StepReport& r, bool first, bool final) {
       const auto ref = static_cast<std::size_t>(reference_cell_);
       eq.diag[ref] += eq.diag[ref];
     }
-    const double tol = final ? 0.0 : settings_.intermediate_tolerance;  // 0: the solver's own
+    const double tol = loose_tolerance(final);  // 0: the solver's own
     const auto s = solve_named(mesh_, eq, p.cells, "pressure equation", [&] {
       if (bordered) {
         W.lambda.resize(open_components_.size(), 0.0);  // the last corrector's: a first guess

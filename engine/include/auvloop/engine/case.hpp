@@ -133,8 +133,8 @@ struct CaseRunOptions {
   // file is computed afresh (a warning). Empty: computed every time.
   std::filesystem::path straight_run;
 };
-// Throws std::runtime_error naming the file when a checkpoint to resume from is another run's
-// or damaged.
+// Throws CheckpointError (state_archive.hpp) naming the file when a checkpoint to resume from is
+// another run's or damaged.
 CaseRun run_case(const CaseSpec& c, const CaseRunOptions& options);
 
 }  // namespace auvloop::engine

@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <cstring>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -19,6 +20,12 @@
 #include <Eigen/Geometry>
 
 namespace auvloop::engine {
+
+// What StateReader throws: a record that is not what the reader expects (truncated, another
+// part, another grid or version).
+struct CheckpointError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
 
 class StateWriter {
  public:
@@ -88,7 +95,8 @@ class StateReader {
   void expect_end() const;
   [[nodiscard]] const std::string& source() const { return source_; }
   [[nodiscard]] std::size_t position() const { return pos_; }
-  [[noreturn]] void fail(std::string_view what) const;  // "checkpoint SOURCE, byte N: what"
+  // Throws CheckpointError "checkpoint SOURCE, byte N: what".
+  [[noreturn]] void fail(std::string_view what) const;
 
  private:
   void take(void* to, std::size_t n);

@@ -77,7 +77,9 @@ struct PimpleSettings {
   // The linear solves' tolerance (pressure, momentum, a turbulence model's) in the outer
   // iterations but the last, if > 0 (else their own): those iterates only carry the outer loop
   // to the step's solution, which the last iteration's solves reach at their own tolerance
-  // (OpenFOAM's p and pFinal, U and UFinal).
+  // (OpenFOAM's p and pFinal, U and UFinal). Transient runs only (a steady solve has no last
+  // iteration: it keeps its own). With outer_tolerance, a step that stops early ends on an
+  // iteration solved at this tolerance.
   double intermediate_tolerance = 0;
   // ...this norm (linear_solver.hpp); `normalised` with 1e-6 / 1e-5 is OpenFOAM's p / U setting
   // in its tutorials and in bench/openfoam_cavity.sh.
@@ -211,9 +213,10 @@ class Pimple {
   void write_checkpoint(const std::filesystem::path& file) const;
   void read_checkpoint(const std::filesystem::path& file);
   // The same record within a larger one (a plant's, the closed loop's checkpoint); the reader
-  // stops after the flow's part.
+  // stops after the flow's part (`whole`: the record must end there, checked before anything
+  // changes).
   void write_checkpoint(StateWriter& out) const;
-  void read_checkpoint(StateReader& in);
+  void read_checkpoint(StateReader& in, bool whole = false);
   // Sets the time step of the following steps (prescribed sequences; the adaptive control
   // overrides it). Throws std::invalid_argument unless dt > 0.
   void set_time_step(double dt);
@@ -237,6 +240,11 @@ class Pimple {
   const std::array<std::vector<Eigen::Vector3d>, 3>& velocity_gradient();
   void transpose_stress();
   void solve_momentum(StepReport& r, bool first, bool final);
+  // The linear solves' tolerance of an outer iteration: intermediate_tolerance in a transient
+  // step's iterations but the last, else 0 (their own).
+  [[nodiscard]] double loose_tolerance(bool final) const {
+    return final || settings_.steady ? 0.0 : settings_.intermediate_tolerance;
+  }
   void correct_pressure(StepReport& r, bool first, bool final);
   // The face flux phi = phiHbyA - Df (grad p)_f of the pressure cells `pc` (the corrector's
   // phiHbyA, Df and, when `corrected`, its explicit non-orthogonal part), faces masked.
