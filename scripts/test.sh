@@ -31,6 +31,12 @@ if [ $sanitizers -eq 1 ]; then
   scripts/build.sh build/sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DAUVLOOP_WERROR=ON -DAUVLOOP_BUILD_TESTS=ON \
     -DAUVLOOP_BUILD_BENCH=OFF -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" \
     -DAUVLOOP_SANITIZE=ON -DAUVLOOP_TEST_LABELS=unit
+  # The comparisons of whole runs on one, two and three threads (names ending in
+  # "...OnOneAndTwoThreads" / "...ForOneTwoAndThreeThreads" that take minutes instrumented) are
+  # left to the release pass: they run the code the other unit tests run here, two or three
+  # times over, and what they check (the reductions' order) is not what these sanitizers see
+  # (data races would need ThreadSanitizer). The quick thread tests still run here.
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
-    ctest --test-dir build/sanitize --output-on-failure -j "$jobs" -L unit
+    ctest --test-dir build/sanitize --output-on-failure -j "$jobs" -L unit \
+    -E 'BitwiseTheSameOnOneAndTwoThreads|BitwiseIdenticalForOneTwoAndThreeThreads'
 fi

@@ -13,6 +13,7 @@
 
 #include <fmt/format.h>
 
+#include "auvloop/geometry/surface.hpp"
 #include "auvloop/mesher/cylinder_grid.hpp"
 #include "auvloop/mesher/generators.hpp"
 
@@ -106,8 +107,8 @@ CylinderOverset unconfined_cylinder_overset(const UnconfinedCylinderSpec& u) {
                  PatchType::inlet, PatchType::empty,  PatchType::empty};
   out.background = cartesian_box(x, y, {0.0, s.thickness}, names);
   out.background.name = "background";
-  out.solid = geometry::cylinder_surface(0, 0, s.radius, -s.thickness, 2 * s.thickness,
-                                         std::max(512, 8 * s.around));
+  out.solid = std::make_shared<const geometry::SurfaceMesh>(geometry::cylinder_surface(
+      0, 0, s.radius, -s.thickness, 2 * s.thickness, std::max(512, 8 * s.around)));
   return out;
 }
 
@@ -122,8 +123,8 @@ CylinderOverset cylinder_overset(const CylinderOversetSpec& s) {
   CylinderOverset out;
   out.cylinder = o_grid(s);
   out.background = background(s);
-  out.solid = geometry::cylinder_surface(s.cx, s.cy, s.radius, -s.thickness, 2 * s.thickness,
-                                         std::max(512, 8 * s.around));
+  out.solid = std::make_shared<const geometry::SurfaceMesh>(geometry::cylinder_surface(
+      s.cx, s.cy, s.radius, -s.thickness, 2 * s.thickness, std::max(512, 8 * s.around)));
   return out;
 }
 

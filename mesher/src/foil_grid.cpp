@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "auvloop/geometry/surface.hpp"
 #include "auvloop/mesher/cell_assembly.hpp"
 #include "auvloop/mesher/generators.hpp"
 #include "section_loop.hpp"
@@ -194,8 +195,8 @@ FoilGrids foil_grids(const FoilOversetSpec& s) {
   for (int k = 0; k <= n; ++k) section.push_back(at(k, -1));
   // A sharp trailing edge is one point; a blunt one closes with its base.
   for (int k = s.section.sharp_trailing_edge ? n - 1 : n; k > 0; --k) section.push_back(at(k, 1));
-  out.solid = geometry::prism_surface(section, {(0.3 - s.pivot) * c, 0.0}, -s.thickness * c,
-                                      2 * s.thickness * c, "foil");
+  out.solid = std::make_shared<const geometry::SurfaceMesh>(geometry::prism_surface(
+      section, {(0.3 - s.pivot) * c, 0.0}, -s.thickness * c, 2 * s.thickness * c, "foil"));
   return out;
 }
 

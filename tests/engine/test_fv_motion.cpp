@@ -133,8 +133,8 @@ Towing towing(bool towed, int threads = 2) {
   spec.radial_cells = 8;
   spec.downstream_cells = 16;
   const auto pair = mesher::cylinder_overset(spec);
-  const auto system =
-      mesher::composite_system({{&pair.cylinder, 1, &pair.solid}, {&pair.background, 0, nullptr}});
+  const auto system = mesher::composite_system(
+      {{&pair.cylinder, 1, pair.solid.get()}, {&pair.background, 0, nullptr}});
   const fv::Mesh mesh(system.composite.grid);
   const fv::Overset overset(mesh, system.stencils, system.composite.cell_offset);
   fv::PimpleSettings s;

@@ -35,8 +35,8 @@ Pair coarse_pair() {
   spec.radial_cells = 8;
   spec.downstream_cells = 16;
   const auto pair = mesher::cylinder_overset(spec);
-  auto system =
-      mesher::composite_system({{&pair.cylinder, 1, &pair.solid}, {&pair.background, 0, nullptr}});
+  auto system = mesher::composite_system(
+      {{&pair.cylinder, 1, pair.solid.get()}, {&pair.background, 0, nullptr}});
   return {std::move(system.composite.grid), std::move(system.stencils),
           std::move(system.composite.cell_offset)};
 }

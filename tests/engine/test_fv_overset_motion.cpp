@@ -39,7 +39,7 @@ std::unique_ptr<fv::MovingOverset> cylinder_pair() {
   auto pair = mesher::cylinder_overset(spec);
   std::vector<fv::MovingOverset::Component> c;
   c.push_back({std::move(pair.cylinder), 1, std::move(pair.solid)});
-  c.push_back({std::move(pair.background), 0, std::nullopt});
+  c.push_back({std::move(pair.background), 0, nullptr});
   return std::make_unique<fv::MovingOverset>(std::move(c));
 }
 
@@ -107,8 +107,8 @@ TEST(OversetMotion, AStreamSeenFromATurningBoxTurnsAtSecondOrder) {
   const double rate = 1.0, end = 0.6;
   auto error = [&](int steps) {
     std::vector<fv::MovingOverset::Component> c;
-    c.push_back({square(0.6, 16, "box", mesher::PatchType::overset), 1, std::nullopt});
-    c.push_back({square(2.0, 32, "background", mesher::PatchType::inlet), 0, std::nullopt});
+    c.push_back({square(0.6, 16, "box", mesher::PatchType::overset), 1, nullptr});
+    c.push_back({square(2.0, 32, "background", mesher::PatchType::inlet), 0, nullptr});
     fv::MovingOverset sys(std::move(c));
     fv::PimpleSettings s;
     s.nu = 1e-2;

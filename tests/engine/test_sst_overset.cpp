@@ -101,7 +101,7 @@ DecayError steady_decay(int n, bool with_box) {
   if (with_box) {
     std::vector<fv::MovingOverset::Component> c;
     c.push_back({square(0.6, n / 2, "box", mesher::PatchType::overset), 1, {}});
-    c.push_back({std::move(background), 0, std::nullopt});
+    c.push_back({std::move(background), 0, nullptr});
     sys = std::make_unique<fv::MovingOverset>(std::move(c));
     sys->place(0, turn_about(Eigen::Vector3d(0.3, 0.1, 0), std::numbers::pi / 6));
     sys->reassemble();
@@ -159,7 +159,7 @@ DecayError turning_decay(double rate) {
   constexpr int n = 32, steps = 60;
   std::vector<fv::MovingOverset::Component> c;
   c.push_back({square(0.6, n / 2, "box", mesher::PatchType::overset), 1, {}});
-  c.push_back({square(kHalf, n, "background", mesher::PatchType::inlet), 0, std::nullopt});
+  c.push_back({square(kHalf, n, "background", mesher::PatchType::inlet), 0, nullptr});
   fv::MovingOverset sys(std::move(c));
   const fv::Mesh& mesh = sys.mesh();
   const auto& ov = sys.overset();
@@ -241,7 +241,7 @@ SwingSst swing_sst(int threads) {
   auto pair = mesher::cylinder_overset(spec);
   std::vector<fv::MovingOverset::Component> c;
   c.push_back({std::move(pair.cylinder), 1, std::move(pair.solid)});
-  c.push_back({std::move(pair.background), 0, std::nullopt});
+  c.push_back({std::move(pair.background), 0, nullptr});
   fv::MovingOverset sys(std::move(c));
   const fv::Mesh& mesh = sys.mesh();
   const auto& ov = sys.overset();
@@ -392,7 +392,7 @@ Oblique oblique_decay(bool with_box) {
   if (with_box) {
     std::vector<fv::MovingOverset::Component> c;
     c.push_back({square(0.6, 16, "box", mesher::PatchType::overset), 1, {}});
-    c.push_back({std::move(background), 0, std::nullopt});
+    c.push_back({std::move(background), 0, nullptr});
     sys = std::make_unique<fv::MovingOverset>(std::move(c));
     sys->place(0, turn_about(Eigen::Vector3d(0.3, 0.1, 0), std::numbers::pi / 6));
     sys->reassemble();

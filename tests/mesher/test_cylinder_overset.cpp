@@ -22,7 +22,8 @@ struct Assembled {
   CylinderOverset pair;
   Assembly a;
   explicit Assembled(const CylinderOversetSpec& spec) : pair(cylinder_overset(spec)) {
-    OversetAssembler assembler({{&pair.cylinder, 1, &pair.solid}, {&pair.background, 0, nullptr}});
+    OversetAssembler assembler(
+        {{&pair.cylinder, 1, pair.solid.get()}, {&pair.background, 0, nullptr}});
     a = assembler.assemble();
   }
 };
@@ -46,10 +47,10 @@ TEST(CylinderOverset, GridsAreValidAndPatchesAsDocumented) {
   names.clear();
   for (const auto& p : pair.background.patches) names.push_back(p.name);
   EXPECT_EQ(names, (std::vector<std::string>{"inlet", "outlet", "bottom", "top", "front", "back"}));
-  const auto m = auvloop::geometry::measure(pair.solid);
+  const auto m = auvloop::geometry::measure(*pair.solid);
   EXPECT_NEAR(m.volume, std::numbers::pi * spec.radius * spec.radius * 3 * spec.thickness,
               1e-4 * m.volume);  // the inscribed prism's, within its chord's area
-  EXPECT_TRUE(auvloop::geometry::inspect(pair.solid).ok());
+  EXPECT_TRUE(auvloop::geometry::inspect(*pair.solid).ok());
 }
 
 TEST(CylinderOverset, AssemblyCutsTheCylinderAndConnectsEveryFringe) {
@@ -110,7 +111,8 @@ TEST(CylinderOverset, MovingTheOGridMovesTheHole) {
   CylinderOversetSpec spec;
   auto pair = cylinder_overset(spec);
   pair.cylinder.placement = Eigen::Translation3d(0.02, -0.01, 0) * Eigen::Isometry3d::Identity();
-  OversetAssembler assembler({{&pair.cylinder, 1, &pair.solid}, {&pair.background, 0, nullptr}});
+  OversetAssembler assembler(
+      {{&pair.cylinder, 1, pair.solid.get()}, {&pair.background, 0, nullptr}});
   const auto a = assembler.assemble();
   const auto bgg = compute_geometry(pair.background);
   spec.cx += 0.02;
@@ -130,8 +132,8 @@ TEST(CylinderOverset, RejectsBadInput) {
   spec.outer_radius = spec.radius;
   EXPECT_THROW(cylinder_overset(spec), std::invalid_argument);
   const auto pair = cylinder_overset({});
-  EXPECT_THROW(OversetAssembler({{&pair.cylinder, 1, &pair.solid}}), std::invalid_argument);
-  OversetAssembler two({{&pair.cylinder, 1, &pair.solid}, {&pair.background, 0, nullptr}});
+  EXPECT_THROW(OversetAssembler({{&pair.cylinder, 1, pair.solid.get()}}), std::invalid_argument);
+  OversetAssembler two({{&pair.cylinder, 1, pair.solid.get()}, {&pair.background, 0, nullptr}});
   EXPECT_THROW(two.assemble({0.1}), std::logic_error);
 }
 
@@ -165,7 +167,8 @@ TEST(CylinderOverset, TheUnconfinedBoxIsCentredGradedAndAssembles) {
   EXPECT_NEAR(smallest, h * h, 0.05 * h * h);  // the core's cells
   EXPECT_GT(largest, 25 * h * h);              // grown towards the sides
   for (double side : {-lo, hi, -bottom, top}) EXPECT_NEAR(side, 0.5 * spec.extent, 1e-9);
-  OversetAssembler assembler({{&pair.cylinder, 1, &pair.solid}, {&pair.background, 0, nullptr}});
+  OversetAssembler assembler(
+      {{&pair.cylinder, 1, pair.solid.get()}, {&pair.background, 0, nullptr}});
   const auto a = assembler.assemble();
   EXPECT_EQ(a.grids[0].count(CellStatus::orphan) + a.grids[1].count(CellStatus::orphan), 0);
   EXPECT_GT(a.grids[1].count(CellStatus::hole), 0);

@@ -71,7 +71,7 @@ TEST(FoilGrids, AreValidWithTheirPatchesAndTheWallOnTheSection) {
 
 TEST(FoilGrids, TheOGridAssemblesOverTheBackgroundAtEveryPitchAngle) {
   auto g = foil_grids(coarse());
-  OversetAssembler assembler({{&g.foil, 1, &g.solid}, {&g.background, 0, nullptr}});
+  OversetAssembler assembler({{&g.foil, 1, g.solid.get()}, {&g.background, 0, nullptr}});
   for (double deg : {0.0, 5.0, -10.0, 15.0}) {
     g.foil.placement = Eigen::Isometry3d(
         Eigen::AngleAxisd(deg * std::numbers::pi / 180, Eigen::Vector3d::UnitZ()));
@@ -98,7 +98,7 @@ TEST(FoilGrids, ABackgroundTheOGridCannotCoverIsNamed) {
   // covers background cells.
   s.spacing = 0.16;
   auto g = foil_grids(s);
-  OversetAssembler assembler({{&g.foil, 1, &g.solid}, {&g.background, 0, nullptr}});
+  OversetAssembler assembler({{&g.foil, 1, g.solid.get()}, {&g.background, 0, nullptr}});
   const auto a = assembler.assemble();
   EXPECT_GT(a.grids[1].count(CellStatus::hole), 0);  // the cells inside the section
   ASSERT_EQ(a.warnings.size(), 1u);
@@ -107,7 +107,7 @@ TEST(FoilGrids, ABackgroundTheOGridCannotCoverIsNamed) {
   // At 0.2 chords no background centre falls inside the section at all: the body is invisible.
   s.spacing = 0.2;
   auto h = foil_grids(s);
-  OversetAssembler blind({{&h.foil, 1, &h.solid}, {&h.background, 0, nullptr}});
+  OversetAssembler blind({{&h.foil, 1, h.solid.get()}, {&h.background, 0, nullptr}});
   const auto b = blind.assemble();
   EXPECT_EQ(b.grids[1].count(CellStatus::hole), 0);
   ASSERT_EQ(b.warnings.size(), 1u);

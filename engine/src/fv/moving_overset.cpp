@@ -10,20 +10,16 @@
 namespace auvloop::engine::fv {
 
 MovingOverset::MovingOverset(std::vector<Component> components, mesher::OversetSettings settings) {
-  solids_.reserve(components.size());
   for (auto& c : components) {
     placement0_.push_back(c.grid.placement);
     axes_.push_back(Eigen::Isometry3d::Identity());
     grids_.push_back(std::make_unique<mesher::Grid>(std::move(c.grid)));
-    if (c.solid) solids_.push_back(std::move(*c.solid));
   }
   std::vector<mesher::OversetComponent> list;
   std::vector<const mesher::Grid*> grids;
-  std::size_t solid = 0;
   for (std::size_t k = 0; k < components.size(); ++k) {
-    const bool has = components[k].solid.has_value();
-    list.push_back({grids_[k].get(), components[k].priority, has ? &solids_[solid] : nullptr});
-    if (has) ++solid;
+    // The assembler copies the solids.
+    list.push_back({grids_[k].get(), components[k].priority, components[k].solid.get()});
     grids.push_back(grids_[k].get());
   }
   assembler_ = std::make_unique<mesher::OversetAssembler>(list, settings);

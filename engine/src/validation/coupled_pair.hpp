@@ -16,7 +16,7 @@ struct CoupledPair {
   fv::Overset overset;
   explicit CoupledPair(const mesher::CylinderOverset& pair)
       : system(mesher::composite_system(
-            {{&pair.cylinder, 1, &pair.solid}, {&pair.background, 0, nullptr}})),
+            {{&pair.cylinder, 1, pair.solid.get()}, {&pair.background, 0, nullptr}})),
         mesh(system.composite.grid),
         overset(mesh, system.stencils, system.composite.cell_offset) {}
 };

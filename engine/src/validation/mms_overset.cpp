@@ -119,8 +119,8 @@ void fix_exact(const fv::Mesh& mesh, fv::VectorField& U, const std::string& patc
 MmsOversetError mms_overset(int m, double nu) {
   const auto t0 = std::chrono::steady_clock::now();
   const auto pair = skewed_pair(m);
-  auto system =
-      mesher::composite_system({{&pair.cylinder, 1, &pair.solid}, {&pair.background, 0, nullptr}});
+  auto system = mesher::composite_system(
+      {{&pair.cylinder, 1, pair.solid.get()}, {&pair.background, 0, nullptr}});
   const auto grid = std::move(system.composite.grid);
   const fv::Mesh mesh(grid);
   const fv::Overset overset(mesh, std::move(system.stencils),

@@ -41,7 +41,7 @@ PitchingFoilResult pitching_foil(const mesher::FoilOversetSpec& g, bool overset,
   if (overset) {
     std::vector<fv::MovingOverset::Component> parts;
     parts.push_back({std::move(grids.foil), 1, std::move(grids.solid)});
-    parts.push_back({std::move(grids.background), 0, std::nullopt});
+    parts.push_back({std::move(grids.background), 0, nullptr});
     sys = std::make_unique<fv::MovingOverset>(std::move(parts));
   } else {
     single = std::make_unique<fv::Mesh>(grids.single);

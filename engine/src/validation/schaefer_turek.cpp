@@ -120,8 +120,8 @@ class Channel {
 void Channel::build_overset(const ChannelGrid& g) {
   const auto o = cylinder_overset_spec(g);
   const auto pair = mesher::cylinder_overset(o);
-  auto system =
-      mesher::composite_system({{&pair.cylinder, 1, &pair.solid}, {&pair.background, 0, nullptr}});
+  auto system = mesher::composite_system(
+      {{&pair.cylinder, 1, pair.solid.get()}, {&pair.background, 0, nullptr}});
   grid_ = std::move(system.composite.grid);
   mesh_ = std::make_unique<fv::Mesh>(grid_);
   overset_ = std::make_unique<fv::Overset>(*mesh_, std::move(system.stencils),

@@ -5,6 +5,7 @@
 
 #include <span>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -13,13 +14,15 @@
 
 #include "auvloop/geometry/fin.hpp"
 #include "auvloop/geometry/myring.hpp"
+#include "auvloop/geometry/surface_fwd.hpp"
 #include "auvloop/geometry/vehicle.hpp"
 
 namespace auvloop::geometry {
 
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point3 = Kernel::Point_3;
-using SurfaceMesh = CGAL::Surface_mesh<Point3>;
+static_assert(std::is_same_v<SurfaceMesh, CGAL::Surface_mesh<Point3>>,
+              "surface_fwd.hpp names another type than CGAL's kernel gives");
 
 struct SurfaceResolution {
   // Target edge length (m). Counts along every direction scale with 1 / edge_length, so halving it

@@ -9,12 +9,14 @@
 // back (empty).
 #pragma once
 
+#include <memory>
+
 #include <array>
 #include <functional>
 #include <string>
 #include <vector>
 
-#include "auvloop/geometry/surface.hpp"
+#include "auvloop/geometry/surface_fwd.hpp"
 #include "auvloop/mesher/grid.hpp"
 
 namespace auvloop::mesher {
@@ -60,7 +62,7 @@ struct CylinderOversetSpec {
 
 struct CylinderOverset {
   Grid cylinder, background;
-  geometry::SurfaceMesh solid;  // in the cylinder grid's frame
+  std::shared_ptr<const geometry::SurfaceMesh> solid;  // in the cylinder grid's frame
 };
 
 CylinderOverset cylinder_overset(const CylinderOversetSpec& spec);

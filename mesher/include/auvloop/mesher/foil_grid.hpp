@@ -20,8 +20,10 @@
 // "west", "east", "south", "north"; all "front", "back" (empty).
 #pragma once
 
+#include <memory>
+
 #include "auvloop/geometry/naca.hpp"
-#include "auvloop/geometry/surface.hpp"
+#include "auvloop/geometry/surface_fwd.hpp"
 #include "auvloop/mesher/grid.hpp"
 
 namespace auvloop::mesher {
@@ -45,7 +47,7 @@ struct FoilOversetSpec {
 
 struct FoilGrids {
   Grid foil, background, single;
-  geometry::SurfaceMesh solid;  // in the foil grid's frame
+  std::shared_ptr<const geometry::SurfaceMesh> solid;  // in the foil grid's frame
 };
 
 // Throws std::invalid_argument naming the setting when the spec is unusable (the circle must

@@ -36,7 +36,8 @@
 #include <string>
 #include <vector>
 
-#include "auvloop/geometry/surface.hpp"
+#include "auvloop/geometry/surface_fwd.hpp"
+#include "auvloop/geometry/vehicle.hpp"
 #include "auvloop/mesher/grid_system.hpp"
 
 namespace auvloop::mesher {

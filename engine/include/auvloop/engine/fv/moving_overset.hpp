@@ -14,13 +14,13 @@
 #pragma once
 
 #include <memory>
-#include <optional>
 #include <vector>
 
 #include <Eigen/Geometry>
 
 #include "auvloop/engine/fv/mesh.hpp"
 #include "auvloop/engine/fv/overset.hpp"
+#include "auvloop/geometry/surface_fwd.hpp"
 #include "auvloop/mesher/composite_grid.hpp"
 
 namespace auvloop::engine::fv {
@@ -28,9 +28,9 @@ namespace auvloop::engine::fv {
 class MovingOverset {
  public:
   struct Component {
-    mesher::Grid grid;                           // at its placement P0
-    int priority = 0;                            // mesher::OversetComponent
-    std::optional<geometry::SurfaceMesh> solid;  // in the grid's frame
+    mesher::Grid grid;                                   // at its placement P0
+    int priority = 0;                                    // mesher::OversetComponent
+    std::shared_ptr<const geometry::SurfaceMesh> solid;  // in the grid's frame; null: none
   };
   // Assembles the grids at their placements. Throws std::invalid_argument as OversetAssembler
   // and Overset do (an orphan named with its cell).
@@ -60,7 +60,6 @@ class MovingOverset {
  private:
   std::vector<std::unique_ptr<mesher::Grid>> grids_;  // stable addresses: the assembler's
   std::vector<Eigen::Isometry3d> placement0_, axes_;
-  std::vector<geometry::SurfaceMesh> solids_;
   std::unique_ptr<mesher::OversetAssembler> assembler_;
   mesher::CompositeGrid composite_;
   std::unique_ptr<Mesh> mesh_;
