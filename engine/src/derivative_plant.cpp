@@ -128,23 +128,19 @@ PlantResult LinearizedPlant::advance(const ActuatorValues& a, double dt) {
 }
 
 void DerivativePlant::save(StateWriter& out) const {
-  out.tag("derivative plant");
-  put(out, state_);
+  save_body_state(out, "derivative plant", state_);
 }
 
 void DerivativePlant::load(StateReader& in) {
-  in.expect_tag("derivative plant");
-  state_ = get_body_state(in);
+  state_ = load_body_state(in, "derivative plant");
 }
 
 void LinearizedPlant::save(StateWriter& out) const {
-  out.tag("linearized plant");
-  put(out, state_);
+  save_body_state(out, "linearized plant", state_);
 }
 
 void LinearizedPlant::load(StateReader& in) {
-  in.expect_tag("linearized plant");
-  state_ = get_body_state(in);
+  state_ = load_body_state(in, "linearized plant");
 }
 
 }  // namespace auvloop::engine

@@ -27,4 +27,14 @@ BodyState get_body_state(StateReader& in) {
   return s;
 }
 
+void save_body_state(StateWriter& out, std::string_view tag, const BodyState& s) {
+  out.tag(tag);
+  put(out, s);
+}
+
+BodyState load_body_state(StateReader& in, std::string_view tag) {
+  in.expect_tag(tag);
+  return get_body_state(in);
+}
+
 }  // namespace auvloop::engine

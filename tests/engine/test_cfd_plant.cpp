@@ -12,7 +12,8 @@
 //     wall loads, every cell's velocity) for two steps. Three, not one: the incremental overset
 //     update keeps donors and the wall distances keep hole cells' last values, so both depend
 //     on the path of deflections, which one step does not show (a first version that re-assembled
-//     on load passed with one step and failed with three). A truncated record is refused by name;
+//     on load passed with one step and failed with three). The plant it is loaded into has run a
+//     step of its own (its fins elsewhere). A truncated record is refused by name;
 //   - bad settings throw naming them; bad actuator values and a propeller without a curve (none
 //     set, none in the vehicle file) are PlantFailures, not exceptions.
 #include <gtest/gtest.h>
@@ -144,6 +145,9 @@ TEST(CfdPlant, ACheckpointContinuesBitwise) {
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("checkpoint half"), std::string::npos) << e.what();
   }
+  // Loaded into a plant that has run (fins turned, flow under way), not only a new one.
+  second.reset(straight());
+  run(second, 7, 7);
   StateReader in(out.bytes(), "memory");
   second.load(in);
   in.expect_end();

@@ -6,11 +6,14 @@
 // about its post (zero grid velocity on the post, rate x arm off it); bad input is rejected and
 // a rejected update keeps the coupling; every wall face belongs to an active cell, the hull's
 // wall area is the Myring profile's (faceted), the fins' equal, at rest and turned; a run with the
-// fins turning is bitwise the same on one and two threads.
+// fins turning is bitwise the same on one and two threads; a stored assembly naming a donor off
+// its grid is refused.
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
@@ -115,6 +118,50 @@ TEST(VehicleOverset, BadDeflectionsAreRejectedKeepingTheCoupling) {
   EXPECT_THROW((void)sys.set_fins({0.1, 0.2}), std::invalid_argument);
   EXPECT_EQ(sys.assembly().grids[0].status, before);
   EXPECT_EQ(sys.deflections(), std::vector<double>(4, 0.0));
+}
+
+// A checkpoint's assembly is checked before it is used: a record whose stencil names a donor cell
+// that does not exist is refused naming the grid and the entry, and the coupling is kept; the
+// record as written loads.
+TEST(VehicleOverset, AStoredAssemblyWithADonorOffTheGridIsRefused) {
+  auto sys = remus_coarse();
+  (void)sys.set_fins({0.05, 0, 0, 0});
+  const auto write = [&](int bad_cell) {
+    StateWriter out;
+    out.tag("overset assembly");
+    out.put(sys.deflections());
+    out.put(static_cast<std::int64_t>(sys.assembly().grids.size()));
+    for (auto g : sys.assembly().grids) {
+      if (bad_cell >= 0 && !g.stencil_cells.empty()) {
+        g.stencil_cells.front() = bad_cell;
+        bad_cell = -1;
+      }
+      out.put(g.status);  // the record's order (vehicle_overset.cpp)
+      out.put(g.donor_grid);
+      out.put(g.donor_cell);
+      out.put(g.fallback);
+      out.put(g.chained);
+      out.put(g.stencil_offsets);
+      out.put(g.stencil_grids);
+      out.put(g.stencil_cells);
+      out.put(g.stencil_weights);
+    }
+    return out.bytes();
+  };
+  auto fresh = remus_coarse();
+  const auto before = fresh.assembly().grids[0].status;
+  StateReader bad(write(1 << 30), "bad");
+  try {
+    fresh.load(bad);
+    ADD_FAILURE() << "a donor off the grid was loaded";
+  } catch (const CheckpointError& e) {
+    EXPECT_NE(std::string(e.what()).find("does not exist"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(fresh.assembly().grids[0].status, before);
+  StateReader good(write(-1), "good");
+  fresh.load(good);
+  EXPECT_EQ(fresh.deflections(), sys.deflections());
+  EXPECT_EQ(fresh.assembly().grids[1].stencil_cells, sys.assembly().grids[1].stencil_cells);
 }
 
 // Forces per grid (issue 17, item 4): the hull's and each fin's wall patches are disjoint by

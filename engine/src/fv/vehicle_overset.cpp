@@ -2,7 +2,10 @@
 // A vehicle's overset system in the flow (vehicle_overset.hpp states the steps of a driver).
 #include "auvloop/engine/fv/vehicle_overset.hpp"
 
+#include <algorithm>
 #include <stdexcept>
+#include <string>
+#include <type_traits>
 
 #include <fmt/format.h>
 
@@ -55,21 +58,60 @@ const mesher::Assembly& VehicleOverset::set_fins(const std::vector<double>& defl
   return assembly_;
 }
 
+namespace {
+// The arrays of a grid's assembly, in the checkpoint's order (one list for writing and reading).
+template <class G, class F>
+void each_array(G& g, F&& f) {
+  f(g.status);
+  f(g.donor_grid);
+  f(g.donor_cell);
+  f(g.fallback);
+  f(g.chained);
+  f(g.stencil_offsets);
+  f(g.stencil_grids);
+  f(g.stencil_cells);
+  f(g.stencil_weights);
+}
+}  // namespace
+
+// What makes a stored grid assembly unusable on this system (empty: nothing): per-cell arrays of
+// another length, stencil offsets that do not run from 0 up to the entries, donors outside the
+// grids. A record that passes may still be another run's; the key in the loop's checkpoint
+// guards that.
+std::string VehicleOverset::misfit(const mesher::GridAssembly& g, std::size_t k) const {
+  const auto grids = system_->grids();
+  const std::size_t cells = assembly_.grids[k].status.size();
+  if (g.status.size() != cells)
+    return fmt::format("{} cells stored, this system has {}", g.status.size(), cells);
+  if (g.donor_grid.size() != cells || g.donor_cell.size() != cells || g.fallback.size() != cells ||
+      g.chained.size() != cells || g.stencil_offsets.size() != cells + 1)
+    return "per-cell arrays of different lengths";
+  const auto entries = g.stencil_cells.size();
+  if (g.stencil_grids.size() != entries || g.stencil_weights.size() != entries ||
+      g.stencil_offsets.front() != 0 ||
+      static_cast<std::size_t>(g.stencil_offsets.back()) != entries ||
+      !std::is_sorted(g.stencil_offsets.begin(), g.stencil_offsets.end()))
+    return "stencil offsets that do not index the stencils";
+  const auto in_grid = [&](int grid, int cell) {
+    return grid >= 0 && static_cast<std::size_t>(grid) < grids.size() && cell >= 0 &&
+           cell < grids[static_cast<std::size_t>(grid)]->cells;
+  };
+  for (std::size_t e = 0; e < entries; ++e)
+    if (!in_grid(g.stencil_grids[e], g.stencil_cells[e]))
+      return fmt::format("stencil entry {}: donor cell {} of grid {} does not exist", e,
+                         g.stencil_cells[e], g.stencil_grids[e]);
+  for (std::size_t c = 0; c < cells; ++c)
+    if (g.donor_grid[c] != -1 && !in_grid(g.donor_grid[c], g.donor_cell[c]))
+      return fmt::format("cell {}: donor cell {} of grid {} does not exist", c, g.donor_cell[c],
+                         g.donor_grid[c]);
+  return {};
+}
+
 void VehicleOverset::save(StateWriter& out) const {
   out.tag("overset assembly");
   out.put(system_->fin_deflections);
   out.put(static_cast<std::int64_t>(assembly_.grids.size()));
-  for (const auto& g : assembly_.grids) {
-    out.put(g.status);
-    out.put(g.donor_grid);
-    out.put(g.donor_cell);
-    out.put(g.fallback);
-    out.put(g.chained);
-    out.put(g.stencil_offsets);
-    out.put(g.stencil_grids);
-    out.put(g.stencil_cells);
-    out.put(g.stencil_weights);
-  }
+  for (const auto& g : assembly_.grids) each_array(g, [&](const auto& v) { out.put(v); });
 }
 
 void VehicleOverset::load(StateReader& in) {
@@ -84,18 +126,10 @@ void VehicleOverset::load(StateReader& in) {
     in.fail(fmt::format("{} grids stored, this system has {}", grids, assembly_.grids.size()));
   for (std::size_t k = 0; k < assembly_.grids.size(); ++k) {
     mesher::GridAssembly g;
-    g.status = in.get_vector<mesher::CellStatus>();
-    g.donor_grid = in.get_vector<int>();
-    g.donor_cell = in.get_vector<int>();
-    g.fallback = in.get_vector<char>();
-    g.chained = in.get_vector<char>();
-    g.stencil_offsets = in.get_vector<int>();
-    g.stencil_grids = in.get_vector<int>();
-    g.stencil_cells = in.get_vector<int>();
-    g.stencil_weights = in.get_vector<double>();
-    if (g.status.size() != assembly_.grids[k].status.size())
-      in.fail(fmt::format("grid {}: {} cells stored, this system has {}", k, g.status.size(),
-                          assembly_.grids[k].status.size()));
+    each_array(
+        g, [&](auto& v) { v = in.get_vector<typename std::decay_t<decltype(v)>::value_type>(); });
+    if (const auto wrong = misfit(g, k); !wrong.empty())
+      in.fail(fmt::format("grid {}: {}", k, wrong));
     stored.grids.push_back(std::move(g));
   }
   try {

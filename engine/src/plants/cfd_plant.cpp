@@ -277,8 +277,12 @@ void CfdPlant::load(StateReader& in) {
   in.get(h.acceleration);
   // The grids and the flow as at the end of the stored step: the assembly (whose statuses
   // initialise() takes as the fields'), the wall distances, the body's motion with the fins'
-  // rates, then the fields.
-  reset(h.state);
+  // rates, then the fields. Each replaces the present one whole, so unlike reset() the fins do
+  // not turn back to zero first (a re-assembly and a wall-distance update for nothing).
+  dfbi_.set_free(m.settings.free);
+  spun_up_.reset();
+  std::fill(m.flow->body_force.begin(), m.flow->body_force.end(), Eigen::Vector3d::Zero());
+  m.rpm = m.J = m.inflow = m.thrust = m.torque = 0;
   try {
     m.sys->load(in);
     if (m.sst) {

@@ -11,6 +11,7 @@
 
 #include <memory>
 #include <string>
+#include <string_view>
 #include <variant>
 
 #include "auvloop/engine/rigid_body.hpp"
@@ -52,5 +53,9 @@ class Plant {
 
 void put(StateWriter& out, const BodyState& s);
 BodyState get_body_state(StateReader& in);
+// The whole record of a plant whose state is its body's (the derivative and linearised plants):
+// the tag naming the plant, then the state.
+void save_body_state(StateWriter& out, std::string_view tag, const BodyState& s);
+BodyState load_body_state(StateReader& in, std::string_view tag);
 
 }  // namespace auvloop::engine

@@ -16,6 +16,7 @@
 #pragma once
 
 #include <memory>
+#include <string>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -86,6 +87,8 @@ class VehicleOverset {
   std::unique_ptr<Overset> overset_;
   mesher::Assembly assembly_;
   void orient();
+  // load(): what makes a stored grid assembly unusable here (empty: nothing).
+  [[nodiscard]] std::string misfit(const mesher::GridAssembly& g, std::size_t k) const;
 };
 
 }  // namespace auvloop::engine::fv
