@@ -257,7 +257,10 @@ nlohmann::json canonical_json(const CaseSpec& c) {
         {"buoyancy_N", mass.buoyancy},
         {"gravity", mass.gravity},
         {"cg_m", {mass.cg_from_cb.x(), mass.cg_from_cb.y(), mass.cg_from_cb.z()}},
-        {"inertia_diag", {mass.inertia(0, 0), mass.inertia(1, 1), mass.inertia(2, 2)}},
+        {"inertia_kg_m2",
+         {{mass.inertia(0, 0), mass.inertia(0, 1), mass.inertia(0, 2)},
+          {mass.inertia(1, 0), mass.inertia(1, 1), mass.inertia(1, 2)},
+          {mass.inertia(2, 0), mass.inertia(2, 1), mass.inertia(2, 2)}}},
         {"hydrodynamics",
          {{"coefficients", coefficients},
           {"fin_pair_factor", h.fin_pair_factor},
@@ -274,7 +277,44 @@ nlohmann::json canonical_json(const CaseSpec& c) {
                 {"relax_u", c.cfd.relax_u},
                 {"relax_p", c.cfd.relax_p},
                 {"intermediate_tolerance", c.cfd.intermediate_tolerance}};
-    j["vehicle"]["propeller"] = {{"open_water", {{"J", w.J}, {"KT", w.KT}, {"KQ", w.KQ}}}};
+    // The flow sees the vehicle's shape, not only its name: a vehicle file edited in place
+    // must not find the old file's results or straight run.
+    const auto& v = c.vehicle.vehicle;
+    const auto& hull = v.hull;
+    const auto& fins = v.fin_set;
+    const auto& prop = v.propeller;
+    json placements = json::array();
+    for (const auto& f : fins.fins)
+      placements.push_back({{"name", f.name}, {"roll_deg", deg(f.roll)}});
+    j["vehicle"]["geometry"] = {{"hull",
+                                 {{"a", hull.a},
+                                  {"a_offset", hull.a_offset},
+                                  {"b", hull.b},
+                                  {"c", hull.c},
+                                  {"c_offset", hull.c_offset},
+                                  {"d", hull.d},
+                                  {"n", hull.n},
+                                  {"theta_deg", deg(hull.theta)}}},
+                                {"cb_station_m", mass.cb_station},
+                                {"fins",
+                                 {{"placements", placements},
+                                  {"section", fins.section.designation()},
+                                  {"sharp_trailing_edge", fins.section.sharp_trailing_edge},
+                                  {"root_chord", fins.root_chord},
+                                  {"tip_chord", fins.tip_chord},
+                                  {"span", fins.span},
+                                  {"sweep_deg", deg(fins.sweep)},
+                                  {"root_le_station", fins.root_le_station},
+                                  {"tip_radius", fins.tip_radius},
+                                  {"post_station", fins.post_station},
+                                  {"root_gap", fins.root_gap},
+                                  {"max_deflection_deg", deg(fins.max_deflection)}}}};
+    j["vehicle"]["water_density_kg_m3"] = mass.water_density;
+    j["vehicle"]["propeller"] = {{"diameter_m", prop.diameter},
+                                 {"hub_diameter_m", prop.hub_diameter},
+                                 {"station_m", prop.station},
+                                 {"disk_thickness_m", prop.disk_thickness},
+                                 {"open_water", {{"J", w.J}, {"KT", w.KT}, {"KQ", w.KQ}}}};
   }
   std::visit(
       [&](const auto& m) {

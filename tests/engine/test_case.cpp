@@ -159,8 +159,19 @@ TEST(Case, CfdStraightRunIsStoredAndReused) {
   medium.cfd.mesh = "medium";
   auto slower_prop = c;
   slower_prop.rpm = 1200;
-  for (const auto* d : {&faster, &medium, &slower_prop})
+  auto fatter = c;  // a vehicle file edited in place keeps its name
+  fatter.vehicle.vehicle.hull.d += 0.001;
+  auto fresh_water = c;
+  fresh_water.vehicle.vehicle.mass.water_density = 1000;
+  auto longer_fins = c;
+  longer_fins.vehicle.vehicle.fin_set.span += 0.001;
+  auto bigger_prop = c;
+  bigger_prop.vehicle.vehicle.propeller.diameter += 0.001;
+  for (const auto* d :
+       {&faster, &medium, &slower_prop, &fatter, &fresh_water, &longer_fins, &bigger_prop}) {
     EXPECT_NE(straight_run_json(*d).dump(), key);
+    EXPECT_NE(canonical_json(*d).dump(), canonical_json(c).dump());
+  }
 
   auvloop::test::TempDir tmp;
   CaseRunOptions o;

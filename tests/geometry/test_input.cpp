@@ -3,7 +3,12 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <stdexcept>
+
+#include "auvloop/geometry/file_io.hpp"
 #include "auvloop/geometry/input.hpp"
+#include "temp_dir.hpp"
 
 using auvloop::input::Document;
 using auvloop::input::InputError;
@@ -127,4 +132,23 @@ TEST(Input, RangeDescriptions) {
   EXPECT_FALSE(Range::any().contains(std::numeric_limits<double>::quiet_NaN()));
   EXPECT_FALSE(Range::positive().contains(0.0));
   EXPECT_TRUE(Range::non_negative().contains(0.0));
+}
+
+// Atomic writes (geometry/file_io.hpp): the target is replaced whole, no temporary file is left
+// beside it, and a target in a missing directory is an error naming it.
+TEST(FileIo, WriteFileAtomicallyReplacesWholeAndLeavesNothingBehind) {
+  auvloop::test::TempDir tmp;
+  const auto file = tmp.path() / "out.txt";
+  auvloop::write_file_atomically(file, "first, the longer one");
+  auvloop::write_file_atomically(file, "second");
+  EXPECT_EQ(auvloop::read_file_text(file), "second");
+  int entries = 0;
+  for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(tmp.path())) ++entries;
+  EXPECT_EQ(entries, 1);
+  try {
+    auvloop::write_file_atomically(tmp.path() / "missing" / "out.txt", "x");
+    ADD_FAILURE() << "wrote into a missing directory";
+  } catch (const std::runtime_error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("missing/out.txt"));
+  }
 }
