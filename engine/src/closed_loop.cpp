@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 
 #include <fmt/format.h>
 
@@ -15,8 +16,10 @@ constexpr double kDeg = 180.0 / std::numbers::pi;
 // The recorded columns, in file order.
 class Recorder {
  public:
-  Recorder() {
+  // The loop's columns, then the plant's own (Plant::signal_columns).
+  explicit Recorder(const Plant& plant) : plant_(plant) {
     for (const auto& [name, unit] : kColumns) series.add(name, unit);
+    for (auto& [name, unit] : plant.signal_columns()) series.add(std::move(name), std::move(unit));
   }
   void record(double t, const BodyState& truth, const Measurements& m, const Commands& c,
               const ActuatorValues& a) {
@@ -49,10 +52,17 @@ class Recorder {
                              truth.nu.head<3>().norm(),
                              std::atan2(truth.v(), truth.u()) * kDeg};
     for (std::size_t i = 0; i < std::size(values); ++i) series.push(i, values[i]);
+    const auto own = plant_.signal_values();
+    if (own.size() + std::size(values) != series.signals().size())
+      throw std::logic_error(fmt::format("the {} plant recorded {} values for {} columns",
+                                         plant_.name(), own.size(),
+                                         series.signals().size() - std::size(values)));
+    for (std::size_t i = 0; i < own.size(); ++i) series.push(std::size(values) + i, own[i]);
   }
   TimeSeries series;
 
  private:
+  const Plant& plant_;
   static constexpr std::pair<const char*, const char*> kColumns[] = {
       {"t", "s"},         {"psi_d", "deg"},       {"psi", "deg"},     {"psi_true", "deg"},
       {"e", "deg"},       {"delta_r_cmd", "deg"}, {"delta_r", "deg"}, {"delta_s_cmd", "deg"},
@@ -146,7 +156,7 @@ LoopResult run_closed_loop(Plant& plant, Sensors& sensors, Manoeuvre& manoeuvre,
                            const LoopSettings& settings) {
   const double dt = settings.dt;
   const auto steps = static_cast<long>(std::llround(settings.duration / dt));
-  Recorder recorder;
+  Recorder recorder(plant);
   LoopResult result;
   long first = 0;
   if (settings.resume && !settings.checkpoint.empty() &&

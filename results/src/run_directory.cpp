@@ -167,6 +167,27 @@ const std::vector<Figure>& standard_figures() {
        false,
        "beta",
        "drift angle beta (deg)"},
+      // The CFD plant's own signals (engine::CfdPlant::signal_columns); other runs lack the
+      // columns and the figures are left out.
+      {"propeller",
+       "Propeller (body-force disk)",
+       "time t (s)",
+       "thrust T (N)",
+       {{"t", "thrust", "T"}},
+       false,
+       "J",
+       "advance ratio J (-)"},
+      {"hull-loads",
+       "Hull: pressure and viscous force (body axes)",
+       "time t (s)",
+       "force (N)",
+       {{"t", "hull.X_p", "X pressure"},
+        {"t", "hull.X_v", "X viscous"},
+        {"t", "hull.Y_p", "Y pressure"},
+        {"t", "hull.Y_v", "Y viscous"}},
+       false,
+       "hull.N_p",
+       "yaw moment N, pressure (N m)"},
   };
   return figures;
 }

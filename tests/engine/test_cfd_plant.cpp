@@ -3,7 +3,9 @@
 // impulsive start (the physics is validated by the released-cylinder, actuator-disk and
 // remus-overset cases; here the plant's own contract):
 //   - towed (every degree of freedom held) the body keeps its state exactly, and the disk
-//     carries the curve's thrust and torque at the J it reports;
+//     carries the curve's thrust and torque at the J it reports; the recorded signals are the
+//     report's (propeller, then each wall part's pressure and viscous force and moment), NaN
+//     after a reset;
 //   - free in the horizontal plane with the rudder turning (relaxed outer iterations with loose
 //     intermediate solves, the case file's defaults), two steps are bitwise the same on one and
 //     on two threads;
@@ -84,6 +86,23 @@ TEST(CfdPlant, TowedHoldsTheBodyAndTheDiskCarriesTheCurvesLoad) {
   EXPECT_NEAR(rho * F.x() / -r.thrust, 1.0, 1e-12);
   ASSERT_FALSE(r.walls.empty());
   EXPECT_EQ(r.walls[0].first, "hull/hull");
+  // The recorded signals: the propeller's four, then 12 per wall part (hull and four fins).
+  const auto columns = plant.signal_columns();
+  const auto values = plant.signal_values();
+  ASSERT_EQ(columns.size(), 4 + 12 * 5U);
+  ASSERT_EQ(values.size(), columns.size());
+  EXPECT_EQ(columns[2], (std::pair<std::string, std::string>{"thrust", "N"}));
+  EXPECT_EQ(values[0], r.J);
+  EXPECT_EQ(values[2], r.thrust);
+  EXPECT_EQ(columns[4].first, "hull.X_p");
+  EXPECT_EQ(values[4], r.walls[0].second.pressure.x());
+  EXPECT_EQ(columns[4 + 7].first, "hull.Y_v");
+  EXPECT_EQ(values[4 + 7], r.walls[0].second.viscous.y());
+  EXPECT_EQ(columns[4 + 12 + 5].first,
+            r.walls[1].first.substr(0, r.walls[1].first.find('/')) + ".N_p");
+  EXPECT_EQ(values[4 + 12 + 5], r.walls[1].second.pressure_moment.z());
+  plant.reset(straight());
+  EXPECT_TRUE(std::isnan(plant.signal_values()[2])) << "a reset keeps the last run's thrust";
 }
 
 TEST(CfdPlant, IsBitwiseTheSameOnOneAndTwoThreads) {

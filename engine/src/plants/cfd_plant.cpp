@@ -142,6 +142,7 @@ CfdPlant::CfdPlant(const geometry::Vehicle& vehicle, CfdPlantSettings settings)
   for (const auto& patch : mesh.grid().patches) {
     if (patch.type == mesher::PatchType::wall) {
       m.flow->wall(patch.name);
+      parts_.push_back(patch.name);
     } else if (patch.name.rfind("background/", 0) == 0 &&
                patch.type != mesher::PatchType::overset) {
       m.flow->far_field(patch.name);
@@ -195,6 +196,7 @@ void CfdPlant::reset(const BodyState& initial) {
   auto& m = *impl_;
   dfbi_.set_free(m.settings.free);
   dfbi_.reset(initial);
+  signals_.assign(signal_columns().size(), std::nan(""));
   if (spun_up_ && *spun_up_ == initial.nu) {
     report_ = {};
     return;
@@ -263,6 +265,7 @@ void CfdPlant::save(StateWriter& out) const {
   out.put(m.rates);
   out.put(spun_up_.has_value());
   out.put(spun_up_.value_or(Vector6d::Zero()));
+  out.put(signals_);
   m.flow->write_checkpoint(out);
 }
 
@@ -296,12 +299,17 @@ void CfdPlant::load(StateReader& in) {
     const bool spun = in.get<bool>();
     Vector6d spun_nu;
     in.get(spun_nu);
+    auto signals = in.get_vector();
+    if (signals.size() != signal_columns().size())
+      in.fail(fmt::format("{} recorded signals stored, this plant records {}", signals.size(),
+                          signal_columns().size()));
     m.rates = std::move(rates);
     dfbi_.restore(h);
     m.move(h.state);
     m.flow->initialise();
     m.flow->read_checkpoint(in);
     spun_up_ = spun ? std::optional<Vector6d>(spun_nu) : std::nullopt;
+    signals_ = std::move(signals);
   } catch (const std::runtime_error&) {
     reset(BodyState{});
     throw;
@@ -381,10 +389,43 @@ PlantResult CfdPlant::advance(const ActuatorValues& a, double dt) {
   r.coupling_change = dfbi_.change();
   r.seconds = seconds_since(t0);
   report_ = std::move(r);
+  record_signals();
   if (!s.nu.allFinite() || s.nu.head<3>().norm() > m.settings.runaway_speed)
     return PlantFailure{fmt::format("CFD plant: speed {:.3g} m/s beyond the runaway limit {} m/s",
                                     s.nu.head<3>().norm(), m.settings.runaway_speed)};
   return PlantStep{s, dfbi_.acceleration()};
+}
+
+namespace {
+std::string part_name(const std::string& patch) {  // "hull/hull" -> "hull"
+  return patch.substr(0, patch.find('/'));
+}
+}  // namespace
+
+std::vector<std::pair<std::string, std::string>> CfdPlant::signal_columns() const {
+  std::vector<std::pair<std::string, std::string>> c{
+      {"J", "-"}, {"V_a", "m/s"}, {"thrust", "N"}, {"torque", "N m"}};
+  for (const auto& patch : parts_) {
+    const auto part = part_name(patch);
+    for (const char* kind : {"_p", "_v"}) {
+      for (const char* f : {"X", "Y", "Z"}) c.emplace_back(part + "." + f + kind, "N");
+      for (const char* f : {"K", "M", "N"}) c.emplace_back(part + "." + f + kind, "N m");
+    }
+  }
+  return c;
+}
+
+void CfdPlant::record_signals() {
+  const auto& r = report_;
+  signals_ = {r.J, r.inflow_speed, r.thrust, r.torque};
+  for (const auto& patch : parts_) {
+    fv::PatchForce f;
+    for (const auto& [name, force] : r.walls)
+      if (name == patch) f = force;
+    const Eigen::Vector3d* order[] = {&f.pressure, &f.pressure_moment, &f.viscous,
+                                      &f.viscous_moment};
+    for (const auto* v : order) signals_.insert(signals_.end(), v->data(), v->data() + 3);
+  }
 }
 
 }  // namespace auvloop::engine

@@ -126,6 +126,13 @@ class CfdPlant final : public Plant {
   void save(StateWriter& out) const override;
   void load(StateReader& in) override;
 
+  // Recorded every step (Plant::signal_columns): the propeller's J, inflow speed V_a (on its
+  // plane), thrust T and torque Q (on the fluid), then for every wall part (the hull, each fin
+  // by name) the force X Y Z (N) and moment K M N (N m) about the body origin in body axes,
+  // pressure ("_p") and viscous ("_v") apart: "hull.X_p", "upper_rudder.N_v", ...
+  [[nodiscard]] std::vector<std::pair<std::string, std::string>> signal_columns() const override;
+  [[nodiscard]] std::vector<double> signal_values() const override { return signals_; }
+
   [[nodiscard]] const CfdStepReport& last() const { return report_; }
   [[nodiscard]] const fv::Pimple& flow() const;
   [[nodiscard]] int cells() const;
@@ -136,6 +143,9 @@ class CfdPlant final : public Plant {
   Dfbi dfbi_;
   CfdStepReport report_;
   std::optional<Vector6d> spun_up_;  // the body velocity of spin_up()'s flow, while it holds
+  std::vector<std::string> parts_;   // the wall patches, in the flow's order
+  std::vector<double> signals_;      // signal_values(): of report_, kept across save/load
+  void record_signals();
 };
 
 }  // namespace auvloop::engine

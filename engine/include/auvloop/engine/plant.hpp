@@ -12,7 +12,9 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <variant>
+#include <vector>
 
 #include "auvloop/engine/rigid_body.hpp"
 #include "auvloop/engine/state_archive.hpp"
@@ -49,6 +51,15 @@ class Plant {
   // std::runtime_error on a record of another plant or grid, leaving the plant unchanged.
   virtual void save(StateWriter& out) const;
   virtual void load(StateReader& in);
+  // The plant's own quantities, recorded by the closed loop beside its columns at every step
+  // (the CFD plant's forces per part and its propeller): names and units, fixed from
+  // construction on, and the values of the last advance() (NaN before the first after a reset;
+  // restored by load(), so that a resumed run records what the uninterrupted one did). None by
+  // default.
+  [[nodiscard]] virtual std::vector<std::pair<std::string, std::string>> signal_columns() const {
+    return {};
+  }
+  [[nodiscard]] virtual std::vector<double> signal_values() const { return {}; }
 };
 
 void put(StateWriter& out, const BodyState& s);
