@@ -22,6 +22,7 @@
 #include "auvloop/engine/fv/mesh.hpp"
 #include "auvloop/engine/fv/propeller_disk.hpp"
 #include "auvloop/engine/propeller.hpp"
+#include "auvloop/geometry/vehicle.hpp"
 #include "auvloop/mesher/generators.hpp"
 
 using namespace auvloop;
@@ -312,5 +313,17 @@ TEST(DiskForce, SamplesTheInflowOnAPlaneAheadRelativeToTheMovingGrid) {
     } catch (const std::invalid_argument& e) {
       EXPECT_NE(std::string(e.what()).find("inflow plane"), std::string::npos) << e.what();
     }
+  }
+}
+
+// The remus100 preset's open-water curve is what its source says: the B3-71.8 at P/D 0.5 with J
+// scaled by 0.78 (the calibration, docs/cfd-plant.md), to the table's printed digits.
+TEST(BSeries, TheRemusPresetsCurveIsTheScaledSeries) {
+  const auto w = auvloop::geometry::preset_vehicle("remus100").propeller.open_water;
+  ASSERT_FALSE(w.empty());
+  for (std::size_t i = 0; i < w.J.size(); ++i) {
+    const auto p = b_series({3, 0.5, 0.718}, w.J[i] / 0.78);
+    EXPECT_NEAR(w.KT[i], p.KT, 5e-6) << "J " << w.J[i];
+    EXPECT_NEAR(w.KQ[i], p.KQ, 5e-7) << "J " << w.J[i];
   }
 }

@@ -115,19 +115,22 @@ TEST(Vehicle, CrossFieldChecks) {
   EXPECT_THAT(load_error(preset_with("roll = 180", "roll = 90")),
               HasSubstr("two fins have the same roll angle"));
   EXPECT_THAT(
-      load_error(preset_with("J  = [0.00, 0.05, 0.10,", "J  = [0.00, 0.10, 0.10,")),
-      HasSubstr("propeller.open_water.J: must increase strictly: entry 3 (0.1) follows 0.1"));
+      load_error(preset_with("J  = [0.00, 0.02, 0.04,", "J  = [0.00, 0.04, 0.04,")),
+      HasSubstr("propeller.open_water.J: must increase strictly: entry 3 (0.04) follows 0.04"));
   EXPECT_THAT(load_error(preset_with("KQ = [0.017446, ", "KQ = [")),
-              HasSubstr("J, KT and KQ must have as many entries (now 12, 12, 11)"));
+              HasSubstr("J, KT and KQ must have as many entries (now 23, 23, 22)"));
 }
 
-TEST(Vehicle, PresetCarriesItsProvisionalOpenWaterCurve) {
+// The preset's curve is the B-series B3-71.8 at P/D 0.5 with J scaled by 0.78: its points are
+// the series' at J / 0.78 (engine::b_series checks the series against propeller.md's table).
+TEST(Vehicle, PresetCarriesItsCalibratedOpenWaterCurve) {
   const auto v = preset_vehicle("remus100");
   const auto& w = v.propeller.open_water;
-  ASSERT_EQ(w.J.size(), 12U);
-  EXPECT_THAT(w.source, HasSubstr("uncalibrated"));
+  ASSERT_EQ(w.J.size(), 23U);
+  EXPECT_THAT(w.source, HasSubstr("calibrated to 1.54 m/s at 1500 rpm"));
   EXPECT_DOUBLE_EQ(w.KT[0], 0.18920);
-  EXPECT_DOUBLE_EQ(w.KQ.back(), 0.004408);
+  EXPECT_DOUBLE_EQ(w.J.back(), 0.44);
+  EXPECT_DOUBLE_EQ(w.KQ.back(), 0.004072);
 }
 
 TEST(Vehicle, EveryProblemOfAFileIsReportedAtOnce) {
