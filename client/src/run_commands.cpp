@@ -55,10 +55,13 @@ void flatten(const json& j, const std::string& prefix,
 }
 
 // The bar, simulated time and, once a few seconds of wall clock give a rate, the ETA (from the
-// rate since the first call: a resumed run's or a CFD straight run's own).
+// rate since the first call: a resumed run's or a CFD straight run's own). On a terminal the bar
+// is redrawn in place; into a file or a pipe (a batch job's log) a line is printed every
+// kLogEvery seconds of wall clock instead.
 class ProgressLine {
  public:
-  explicit ProgressLine(double total) : total_(total) {}
+  ProgressLine(double total, bool terminal) : total_(total), terminal_(terminal) {}
+  static constexpr double kLogEvery = 30;  // s
   void operator()(double t) {
     const auto now = std::chrono::steady_clock::now();
     if (!first_) first_ = std::pair{t, now};
@@ -70,6 +73,12 @@ class ProgressLine {
       const auto left = static_cast<long>((total_ - t) / rate);
       eta = fmt::format(", {:.3g}x real time, ETA {}:{:02d}", rate, left / 60, left % 60);
     }
+    if (!terminal_) {
+      if (wall < next_log_) return;
+      next_log_ = wall + kLogEvery;
+      fmt::print(stderr, "  t = {:.2f} / {:.1f} s after {:.0f} s{}\n", t, total_, wall, eta);
+      return;
+    }
     const int width = 30;
     const int filled = static_cast<int>(width * std::clamp(t / total_, 0.0, 1.0));
     fmt::print(stderr, "\r  [{}{}] t = {:6.2f} / {:.1f} s{}   ",
@@ -79,6 +88,8 @@ class ProgressLine {
 
  private:
   double total_;
+  bool terminal_;
+  double next_log_ = kLogEvery;  // s of wall clock since the first call
   std::optional<std::pair<double, std::chrono::steady_clock::time_point>> first_;
 };
 
@@ -90,7 +101,7 @@ int run_case_command(const RunOptions& o) {
   const bool bar = !o.quiet && isatty(STDERR_FILENO);
   const auto start = std::chrono::steady_clock::now();
   engine::CaseRunOptions options;
-  if (bar) options.progress = ProgressLine(spec.duration);
+  if (!o.quiet) options.progress = ProgressLine(spec.duration, bar);
   options.checkpoint = out + ".checkpoint";
   options.checkpoint_every = o.checkpoint_every;
   options.checkpoint_key = results::content_hash(engine::canonical_json(spec));
@@ -127,6 +138,16 @@ int run_case_command(const RunOptions& o) {
                spec.manoeuvre_type(), plant, spec.dt, run.loop.final_time, wall);
     if (!run.straight_run.empty())
       fmt::print("  straight run before t = 0: {}\n", run.straight_run);
+    if (!run.wall_clock.empty()) {
+      double plant_total = 0;
+      for (const auto& [phase, seconds] : run.wall_clock)
+        if (phase.rfind("of which", 0) != 0) plant_total += seconds;
+      std::string split;
+      for (const auto& [phase, seconds] : run.wall_clock)
+        split += fmt::format("{}{} {:.0f} %", split.empty() ? "" : ", ", phase,
+                             plant_total > 0 ? 100 * seconds / plant_total : 0.0);
+      fmt::print("  the plant's {:.0f} s of wall clock: {}\n", plant_total, split);
+    }
     std::vector<std::pair<std::string, std::string>> rows;
     flatten(report.metrics, "", rows);
     for (const auto& [k, v] : rows) fmt::print("  {:<40} {}\n", k, v);
@@ -205,7 +226,8 @@ void register_run_commands(CLI::App& app, int& exit_code) {
       "directory, replacing an earlier result there only once the new one is complete. A CFD\n"
       "run writes a checkpoint beside it (OUT.checkpoint) every simulated second; if the run is\n"
       "stopped (Ctrl-C, a reboot), the same command with --resume continues it; a checkpoint\n"
-      "of the case file as it was before an edit is refused.\n"
+      "of the case file as it was before an edit is refused. Progress (simulated time, speed\n"
+      "against real time, ETA) is a bar on a terminal and a line every 30 s in a log file.\n"
       "Example: auvloop run examples/heading-step.toml --plant linearized");
   run->callback([o, &exit_code] { exit_code = run_case_command(*o); });
 

@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "auvloop/engine/case.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <numbers>
 
 #include <fmt/format.h>
@@ -142,7 +144,7 @@ void read_cfd(Table root, CaseSpec& c) {
   f.outer_iterations = static_cast<int>(t->integer_or("outer_iterations", 5, 1, 50));
   f.sst = t->choice_or("turbulence", "sst", {"sst", "laminar"}) == "sst";
   f.horizontal = t->choice_or("dof", "6dof", {"6dof", "horizontal"}) == "horizontal";
-  f.spin_up = t->number_or("spin_up", 1.0, Range::closed(0, 600), "s");
+  f.spin_up = t->number_or("spin_up", 2.0, Range::closed(0, 600), "s");
   f.relax_u = t->number_or("relax_u", 0.7, Range::open_closed(0, 1), "");
   f.relax_p = t->number_or("relax_p", 0.3, Range::open_closed(0, 1), "");
   f.intermediate_tolerance =
@@ -408,7 +410,24 @@ CaseRun run_case(const CaseSpec& c, const std::function<void(double t)>& progres
 
 namespace {
 constexpr std::string_view kStraightRunTag = "auvloop straight run";
+
+// The store of straight runs keeps the kStraightRunsKept most recently used (a load touches its
+// file); older ones go when a new one is stored. Errors are left: pruning is housekeeping.
+constexpr std::size_t kStraightRunsKept = 16;  // about 23 MB each on coarse, 100 MB on medium
+
+void prune_straight_runs(const std::filesystem::path& dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  std::vector<std::pair<fs::file_time_type, fs::path>> files;
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
+    if (e.path().extension() != ".flow" || !e.is_regular_file(ec)) continue;
+    files.emplace_back(e.last_write_time(ec), e.path());
+  }
+  if (files.size() <= kStraightRunsKept) return;
+  std::sort(files.begin(), files.end(), std::greater<>());  // newest first
+  for (std::size_t i = kStraightRunsKept; i < files.size(); ++i) fs::remove(files[i].second, ec);
 }
+}  // namespace
 
 CaseRun run_case(const CaseSpec& c, const CaseRunOptions& options) {
   const auto& progress = options.progress;
@@ -448,6 +467,8 @@ CaseRun run_case(const CaseSpec& c, const CaseRunOptions& options) {
         cfd->load(in);
         in.expect_end();
         run.straight_run = "loaded from " + file.string();
+        std::error_code ec;  // in use: the last to be pruned
+        std::filesystem::last_write_time(file, std::filesystem::file_time_type::clock::now(), ec);
       } catch (const std::runtime_error& e) {
         run.straight_run_warning =
             fmt::format("the stored straight run was not used: {}", e.what());
@@ -466,6 +487,7 @@ CaseRun run_case(const CaseSpec& c, const CaseRunOptions& options) {
           if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
           write_file_atomically(file, out.bytes());
           run.straight_run = "computed and stored in " + file.string();
+          if (file.has_parent_path()) prune_straight_runs(file.parent_path());
         } catch (const std::exception& e) {
           run.straight_run_warning = fmt::format("the straight run was not stored: {}", e.what());
         }
@@ -503,6 +525,7 @@ CaseRun run_case(const CaseSpec& c, const CaseRunOptions& options) {
                        .checkpoint_every = every > 0 ? std::max(1L, std::lround(every / c.dt)) : 0,
                        .checkpoint_key = options.checkpoint_key,
                        .resume = options.resume});
+  run.wall_clock = plant->wall_clock();
   return run;
 }
 

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Case files: the shipped examples parse and run; bad files fail with file:line and the reason.
+#include <chrono>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -113,7 +114,7 @@ TEST(Case, CfdTableIsReadCheckedAndHashed) {
   EXPECT_EQ(c.cfd.outer_iterations, 5);
   EXPECT_TRUE(c.cfd.sst);
   EXPECT_TRUE(c.cfd.horizontal);
-  EXPECT_DOUBLE_EQ(c.cfd.spin_up, 1.0);
+  EXPECT_DOUBLE_EQ(c.cfd.spin_up, 2.0);
   const auto j = canonical_json(c);
   EXPECT_EQ(j["plant"], "cfd");
   EXPECT_EQ(j["cfd"]["mesh"], "coarse");
@@ -176,10 +177,20 @@ TEST(Case, CfdStraightRunIsStoredAndReused) {
   auvloop::test::TempDir tmp;
   CaseRunOptions o;
   o.straight_run = tmp.path() / "runs" / "straight.flow";
+  // The store keeps the 16 most recently used: sixteen older ones are there, the oldest goes.
+  std::filesystem::create_directories(tmp.path() / "runs");
+  const auto now = std::filesystem::file_time_type::clock::now();
+  for (int i = 0; i < 16; ++i) {
+    const auto old = tmp.path() / "runs" / fmt::format("old{}.flow", i);
+    std::ofstream(old) << "an older straight run";
+    std::filesystem::last_write_time(old, now - std::chrono::hours(i + 1));
+  }
   const auto first = run_case(c, o);
   ASSERT_FALSE(first.loop.failure) << *first.loop.failure;
   EXPECT_THAT(first.straight_run, HasSubstr("computed and stored"));
   ASSERT_TRUE(std::filesystem::exists(o.straight_run));
+  EXPECT_FALSE(std::filesystem::exists(tmp.path() / "runs" / "old15.flow"));
+  EXPECT_TRUE(std::filesystem::exists(tmp.path() / "runs" / "old14.flow"));
   const auto second = run_case(c, o);
   ASSERT_FALSE(second.loop.failure) << *second.loop.failure;
   EXPECT_THAT(second.straight_run, HasSubstr("loaded from"));

@@ -2,6 +2,7 @@
 // The CFD plant's advance, steps 1-5 of engine/cfd_plant.hpp.
 #include "auvloop/engine/cfd_plant.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -197,6 +198,7 @@ void CfdPlant::reset(const BodyState& initial) {
   dfbi_.set_free(m.settings.free);
   dfbi_.reset(initial);
   signals_.assign(signal_columns().size(), std::nan(""));
+  clock_.fill(0);
   if (spun_up_ && *spun_up_ == initial.nu) {
     report_ = {};
     return;
@@ -310,6 +312,7 @@ void CfdPlant::load(StateReader& in) {
     m.flow->read_checkpoint(in);
     spun_up_ = spun ? std::optional<Vector6d>(spun_nu) : std::nullopt;
     signals_ = std::move(signals);
+    clock_.fill(0);
   } catch (const std::runtime_error&) {
     reset(BodyState{});
     throw;
@@ -415,15 +418,31 @@ std::vector<std::pair<std::string, std::string>> CfdPlant::signal_columns() cons
   return c;
 }
 
+std::vector<std::pair<std::string, double>> CfdPlant::wall_clock() const {
+  return {{"fins", clock_[0]},     {"coupling", clock_[1]},        {"momentum", clock_[2]},
+          {"pressure", clock_[3]}, {"turbulence", clock_[4]},      {"flow-other", clock_[5]},
+          {"rest", clock_[6]},     {"of which overset", clock_[7]}};
+}
+
 void CfdPlant::record_signals() {
   const auto& r = report_;
+  const auto& f = r.flow;
+  const double phases[] = {r.seconds_fins,     r.seconds_coupling,   f.seconds_momentum,
+                           f.seconds_pressure, f.seconds_turbulence, f.seconds_other};
+  double sum = 0;
+  for (std::size_t i = 0; i < std::size(phases); ++i) {
+    clock_[i] += phases[i];
+    sum += phases[i];
+  }
+  clock_[6] += std::max(0.0, r.seconds - sum);
+  clock_[7] += f.seconds_overset;
   signals_ = {r.J, r.inflow_speed, r.thrust, r.torque};
   for (const auto& patch : parts_) {
-    fv::PatchForce f;
+    fv::PatchForce w;
     for (const auto& [name, force] : r.walls)
-      if (name == patch) f = force;
-    const Eigen::Vector3d* order[] = {&f.pressure, &f.pressure_moment, &f.viscous,
-                                      &f.viscous_moment};
+      if (name == patch) w = force;
+    const Eigen::Vector3d* order[] = {&w.pressure, &w.pressure_moment, &w.viscous,
+                                      &w.viscous_moment};
     for (const auto* v : order) signals_.insert(signals_.end(), v->data(), v->data() + 3);
   }
 }

@@ -28,7 +28,7 @@ struct CfdSpec {
   int outer_iterations = 5;
   bool sst = true;          // turbulence = "sst" | "laminar"
   bool horizontal = false;  // dof = "horizontal" (surge, sway, yaw) | "6dof"
-  double spin_up = 1.0;     // s of straight running, towed, before the manoeuvre's t = 0
+  double spin_up = 2.0;     // s of straight running, towed, before the manoeuvre's t = 0
   double relax_u = 0.7, relax_p = 0.3;  // outer iterations but the last
   // The linear solves' relative tolerance in the outer iterations but the last (the last: 1e-8)
   double intermediate_tolerance = 1e-4;
@@ -108,6 +108,9 @@ struct CaseRun {
   // "in the checkpoint" (a resume); with a warning when a stored one could not be used.
   std::string straight_run;
   std::optional<std::string> straight_run_warning;
+  // Where the plant's wall clock went in the manoeuvre (Plant::wall_clock; since the resume
+  // for a resumed run): (phase, s); empty for a cheap plant.
+  std::vector<std::pair<std::string, double>> wall_clock;
 };
 
 // What a CFD case's straight run before t = 0 depends on: the vehicle, the plant's settings, the

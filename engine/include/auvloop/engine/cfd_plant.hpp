@@ -132,6 +132,10 @@ class CfdPlant final : public Plant {
   // pressure ("_p") and viscous ("_v") apart: "hull.X_p", "upper_rudder.N_v", ...
   [[nodiscard]] std::vector<std::pair<std::string, std::string>> signal_columns() const override;
   [[nodiscard]] std::vector<double> signal_values() const override { return signals_; }
+  // Phases: fins (re-assembly, wall distances), coupling (wall loads, 6-DOF, grid motion, disk),
+  // momentum, pressure, turbulence, flow-other (the step's end), rest; "overset" is not a phase
+  // of its own: its share of momentum, pressure and flow-other is given as "of which overset".
+  [[nodiscard]] std::vector<std::pair<std::string, double>> wall_clock() const override;
 
   [[nodiscard]] const CfdStepReport& last() const { return report_; }
   [[nodiscard]] const fv::Pimple& flow() const;
@@ -145,6 +149,7 @@ class CfdPlant final : public Plant {
   std::optional<Vector6d> spun_up_;  // the body velocity of spin_up()'s flow, while it holds
   std::vector<std::string> parts_;   // the wall patches, in the flow's order
   std::vector<double> signals_;      // signal_values(): of report_, kept across save/load
+  std::array<double, 8> clock_{};    // wall_clock()'s sums, s
   void record_signals();
 };
 

@@ -60,6 +60,11 @@ class Plant {
     return {};
   }
   [[nodiscard]] virtual std::vector<double> signal_values() const { return {}; }
+  // Where advance()'s wall clock went since the last reset() or load(): (phase, seconds), the
+  // phases disjoint and summing to the whole; none by default (a cheap plant).
+  [[nodiscard]] virtual std::vector<std::pair<std::string, double>> wall_clock() const {
+    return {};
+  }
 };
 
 void put(StateWriter& out, const BodyState& s);
