@@ -147,6 +147,9 @@ void read_cfd(Table root, CaseSpec& c) {
   f.spin_up = t->number_or("spin_up", 2.0, Range::closed(0, 600), "s");
   f.relax_u = t->number_or("relax_u", 0.7, Range::open_closed(0, 1), "");
   f.relax_p = t->number_or("relax_p", 0.3, Range::open_closed(0, 1), "");
+  f.pressure_correctors = static_cast<int>(t->integer_or("pressure_correctors", 1, 1, 10));
+  f.turbulence_final_only = t->boolean_or("turbulence_final_only", true);
+  f.tolerance = t->number_or("tolerance", 1e-6, Range::closed(1e-14, 1e-3), "");
   f.intermediate_tolerance =
       t->number_or("intermediate_tolerance", 1e-4, Range::closed(0, 0.1), "");
   t->finish();
@@ -278,6 +281,9 @@ nlohmann::json canonical_json(const CaseSpec& c) {
                 {"spin_up_s", c.cfd.spin_up},
                 {"relax_u", c.cfd.relax_u},
                 {"relax_p", c.cfd.relax_p},
+                {"pressure_correctors", c.cfd.pressure_correctors},
+                {"turbulence_final_only", c.cfd.turbulence_final_only},
+                {"tolerance", c.cfd.tolerance},
                 {"intermediate_tolerance", c.cfd.intermediate_tolerance}};
     // The flow sees the vehicle's shape, not only its name: a vehicle file edited in place
     // must not find the old file's results or straight run.
@@ -449,6 +455,9 @@ CaseRun run_case(const CaseSpec& c, const CaseRunOptions& options) {
     if (c.cfd.horizontal) s.free = DfbiBody::horizontal;
     s.relax_u = c.cfd.relax_u;
     s.relax_p = c.cfd.relax_p;
+    s.pressure_correctors = c.cfd.pressure_correctors;
+    s.tolerance = c.cfd.tolerance;
+    s.turbulence_final_only = c.cfd.turbulence_final_only;
     s.intermediate_tolerance = c.cfd.intermediate_tolerance;
     s.reference_speed = std::max(c.initial_speed, 0.1);
     s.added_mass = prestero_added_mass(c.vehicle.hydrodynamics);

@@ -132,6 +132,18 @@ TEST(Case, CfdTableIsReadCheckedAndHashed) {
       HasSubstr("[cfd] applies to plant = \"cfd\", not \"derivative\""));
   EXPECT_THAT(error_of(example("cfd-heading-step.toml"), "relax_p = 0.3", "relax_p = 0"),
               HasSubstr("cfd.relax_p"));
+  // The solver's correctors, last tolerance and turbulence schedule are in the key.
+  for (const auto& [from, to] : std::vector<std::pair<std::string, std::string>>{
+           {"pressure_correctors = 1", "pressure_correctors = 2"},
+           {"\ntolerance = 1e-6", "\ntolerance = 1e-8"},
+           {"turbulence_final_only = true", "turbulence_final_only = false"}}) {
+    std::string more = example("cfd-heading-step.toml");
+    ASSERT_NE(more.find(from), std::string::npos) << from;
+    more.replace(more.find(from), from.size(), to);
+    EXPECT_NE(j.dump(), canonical_json(parse_case(more, "k", AUVLOOP_SOURCE_DIR)).dump()) << to;
+  }
+  EXPECT_THAT(error_of(example("cfd-heading-step.toml"), "\ntolerance = 1e-6", "\ntolerance = 0.1"),
+              HasSubstr("cfd.tolerance"));
 }
 
 // The straight run before t = 0 (issue 18 item 4): its key covers what it depends on and nothing

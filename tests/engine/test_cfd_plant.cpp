@@ -86,21 +86,30 @@ TEST(CfdPlant, TowedHoldsTheBodyAndTheDiskCarriesTheCurvesLoad) {
   EXPECT_NEAR(rho * F.x() / -r.thrust, 1.0, 1e-12);
   ASSERT_FALSE(r.walls.empty());
   EXPECT_EQ(r.walls[0].first, "hull/hull");
-  // The recorded signals: the propeller's four, then 12 per wall part (hull and four fins).
+  // The recorded signals: the propeller's four, the solver's seven, then 12 per wall part
+  // (hull and four fins).
   const auto columns = plant.signal_columns();
   const auto values = plant.signal_values();
-  ASSERT_EQ(columns.size(), 4 + 12 * 5U);
+  constexpr std::size_t w = 4 + 7;  // the first wall column
+  ASSERT_EQ(columns.size(), w + 12 * 5U);
   ASSERT_EQ(values.size(), columns.size());
   EXPECT_EQ(columns[2], (std::pair<std::string, std::string>{"thrust", "N"}));
   EXPECT_EQ(values[0], r.J);
   EXPECT_EQ(values[2], r.thrust);
-  EXPECT_EQ(columns[4].first, "hull.X_p");
-  EXPECT_EQ(values[4], r.walls[0].second.pressure.x());
-  EXPECT_EQ(columns[4 + 7].first, "hull.Y_v");
-  EXPECT_EQ(values[4 + 7], r.walls[0].second.viscous.y());
-  EXPECT_EQ(columns[4 + 12 + 5].first,
+  EXPECT_EQ(columns[4].first, "solver.outer");
+  EXPECT_EQ(values[4], r.flow.outer_iterations);
+  EXPECT_EQ(columns[6].first, "solver.p_iterations");
+  EXPECT_EQ(values[6], r.flow.pressure_iterations);
+  EXPECT_GT(values[6], 0);
+  EXPECT_EQ(columns[9].first, "solver.courant");
+  EXPECT_EQ(values[9], r.flow.max_courant);
+  EXPECT_EQ(columns[w].first, "hull.X_p");
+  EXPECT_EQ(values[w], r.walls[0].second.pressure.x());
+  EXPECT_EQ(columns[w + 7].first, "hull.Y_v");
+  EXPECT_EQ(values[w + 7], r.walls[0].second.viscous.y());
+  EXPECT_EQ(columns[w + 12 + 5].first,
             r.walls[1].first.substr(0, r.walls[1].first.find('/')) + ".N_p");
-  EXPECT_EQ(values[4 + 12 + 5], r.walls[1].second.pressure_moment.z());
+  EXPECT_EQ(values[w + 12 + 5], r.walls[1].second.pressure_moment.z());
   plant.reset(straight());
   EXPECT_TRUE(std::isnan(plant.signal_values()[2])) << "a reset keeps the last run's thrust";
 }

@@ -336,6 +336,62 @@ TEST(FvEffectiveViscosity, CouetteFlowWithViscosityLinearInYIsSecondOrder) {
 }
 
 namespace {
+// A model that records the outer iterations it is corrected in (in.final per call).
+class CorrectionLog final : public fv::TurbulenceModel {
+ public:
+  explicit CorrectionLog(const fv::Mesh& mesh)
+      : nu_(static_cast<std::size_t>(mesh.faces()), 1e-3) {}
+  void initialise(const fv::VectorField&, std::span<const double>) override {}
+  void begin_step() override { calls.emplace_back(); }
+  [[nodiscard]] std::span<const double> nu_eff() const override { return nu_; }
+  fv::TurbulenceReport correct(const fv::TurbulenceInput& in) override {
+    calls.back().push_back(in.final);
+    return {};
+  }
+  void save() override {}
+  void restore() override {}
+  void check() const override {}
+  [[nodiscard]] std::vector<const fv::ScalarField*> fields() const override { return {}; }
+  [[nodiscard]] std::vector<fv::ScalarField*> fields() override { return {}; }
+  [[nodiscard]] std::vector<std::vector<double>*> state() override { return {&nu_}; }
+  void set_overset(const fv::Overset*) override {}
+  void carried(std::vector<Carried>& out) override { out.clear(); }
+  std::vector<std::vector<bool>> calls;  // per step, per correction: in.final
+
+ private:
+  std::vector<double> nu_;
+};
+
+std::vector<std::vector<bool>> corrections(bool final_only, double outer_tolerance) {
+  const auto grid = unit_box_4x3();
+  const fv::Mesh mesh(grid);
+  fv::PimpleSettings s;
+  s.dt = 0.1;
+  s.outer_iterations = 3;
+  s.turbulence_final_only = final_only;
+  s.outer_tolerance = outer_tolerance;
+  fv::Pimple flow(mesh, s);
+  flow.U.fix(mesh, "top", {1, 0, 0});
+  CorrectionLog model(mesh);
+  flow.set_turbulence(&model);
+  flow.initialise();
+  for (int n = 0; n < 2; ++n) flow.step();
+  return model.calls;
+}
+}  // namespace
+
+// OpenFOAM's turbOnFinalIterOnly: the model's equations once a step, in the last outer
+// iteration, or in the one where the outer loop stops early.
+TEST(FvTurbulenceFinalOnly, CorrectsTheModelInTheLastOuterIterationOnly) {
+  using Log = std::vector<std::vector<bool>>;
+  EXPECT_EQ(corrections(false, 0), (Log{{false, false, true}, {false, false, true}}));
+  EXPECT_EQ(corrections(true, 0), (Log{{true}, {true}}));
+  // An outer tolerance no residual misses: every step stops after its second iteration, which
+  // corrects the model although it is not the last planned one.
+  EXPECT_EQ(corrections(true, 1e9), (Log{{false}, {false}}));
+}
+
+namespace {
 std::vector<double> plate_cf(int threads, engine::turbulence::WallTreatment wall) {
   const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                                   static_cast<std::size_t>(threads));

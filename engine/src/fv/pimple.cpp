@@ -5,8 +5,9 @@
 //      and pressure, solve the predictor (momentum.cpp);
 //   3. then the pressure correctors (pressure.cpp), the last outer iteration unrelaxed, and the
 //      force that balances the corrected velocity, for the next step's predictor; a turbulence
-//      model's correct(); when another outer iteration follows, the motion_correct hook (the
-//      6-DOF coupling), whose new motion applies at once (motion.cpp);
+//      model's correct() (in the last outer iteration only with turbulence_final_only, the
+//      eddy viscosity then the last step's in the others); when another outer iteration follows,
+//      the motion_correct hook (the 6-DOF coupling), whose new motion applies at once (motion.cpp);
 //   4. Courant number, continuity error, divergence checks; on failure restore the last good
 //      fields and throw DivergenceError naming where and when.
 #include "auvloop/engine/fv/pimple.hpp"
@@ -273,7 +274,10 @@ StepReport Pimple::step() {
         correct_pressure(r, outer == 1 && corr == 0, final);
       store_predictor_force();
       r.seconds_pressure += seconds_since(t0);
-      if (turbulence_) {
+      // Converged outer loop: momentum's initial residual of this iteration is small enough.
+      const bool converged = outer > 1 && r.outer_residual < settings_.outer_tolerance;
+      if (turbulence_ &&
+          (final || converged || settings_.steady || !settings_.turbulence_final_only)) {
         t0 = std::chrono::steady_clock::now();
         TurbulenceInput in;
         in.U = &U;
@@ -288,8 +292,7 @@ StepReport Pimple::step() {
         r.seconds_turbulence += seconds_since(t0);
       }
       r.outer_iterations = outer;
-      // Converged outer loop: momentum's initial residual of this iteration is small enough.
-      if (outer > 1 && r.outer_residual < settings_.outer_tolerance) break;
+      if (converged) break;
       if (motion_correct && outer < settings_.outer_iterations) motion_correct(outer);
     }
     const auto t0 = std::chrono::steady_clock::now();

@@ -47,6 +47,10 @@ void check(const CfdPlantSettings& s) {
   if (s.sense != 1 && s.sense != -1)
     bad(fmt::format("the propeller's sense must be +1 or -1, got {}", s.sense));
   if (!(s.runaway_speed > 0)) bad("runaway_speed must be positive");
+  if (s.pressure_correctors < 1)
+    bad(fmt::format("pressure_correctors must be at least 1, got {}", s.pressure_correctors));
+  if (!(s.tolerance > 0 && s.tolerance < 1))
+    bad(fmt::format("tolerance must be in (0, 1), got {}", s.tolerance));
   if (!(s.intermediate_tolerance >= 0 && s.intermediate_tolerance < 1))
     bad(fmt::format("intermediate_tolerance must be in [0, 1), got {}", s.intermediate_tolerance));
 }
@@ -132,6 +136,9 @@ CfdPlant::CfdPlant(const geometry::Vehicle& vehicle, CfdPlantSettings settings)
   ps.convection = s.convection;
   ps.relax_u = s.relax_u;
   ps.relax_p = s.relax_p;
+  ps.pressure_correctors = s.pressure_correctors;
+  ps.tolerance = s.tolerance;
+  ps.turbulence_final_only = s.turbulence_final_only;
   ps.intermediate_tolerance = s.intermediate_tolerance;
   // The nose rim's and fin roots' tiny cells pass Courant numbers of several hundred at 2 ms
   // and five times that at 10 ms while the flow stays smooth (measured): a guard against a
@@ -408,6 +415,13 @@ std::string part_name(const std::string& patch) {  // "hull/hull" -> "hull"
 std::vector<std::pair<std::string, std::string>> CfdPlant::signal_columns() const {
   std::vector<std::pair<std::string, std::string>> c{
       {"J", "-"}, {"V_a", "m/s"}, {"thrust", "N"}, {"torque", "N m"}};
+  // The flow solver's step (a CFD engineer's residual log): outer iterations taken, momentum's
+  // initial residual in the last of them, the Krylov iterations of pressure, momentum and the
+  // SST equations summed over the step, the largest Courant number, the continuity error.
+  for (const char* name :
+       {"solver.outer", "solver.outer_residual", "solver.p_iterations", "solver.U_iterations",
+        "solver.komega_iterations", "solver.courant", "solver.continuity"})
+    c.emplace_back(name, "-");
   for (const auto& patch : parts_) {
     const auto part = part_name(patch);
     for (const char* kind : {"_p", "_v"}) {
@@ -436,7 +450,17 @@ void CfdPlant::record_signals() {
   }
   clock_[6] += std::max(0.0, r.seconds - sum);
   clock_[7] += f.seconds_overset;
-  signals_ = {r.J, r.inflow_speed, r.thrust, r.torque};
+  signals_ = {r.J,
+              r.inflow_speed,
+              r.thrust,
+              r.torque,
+              static_cast<double>(f.outer_iterations),
+              f.outer_residual,
+              static_cast<double>(f.pressure_iterations),
+              static_cast<double>(f.momentum_iterations),
+              static_cast<double>(f.turbulence.k_iterations + f.turbulence.omega_iterations),
+              f.max_courant,
+              f.continuity_error};
   for (const auto& patch : parts_) {
     fv::PatchForce w;
     for (const auto& [name, force] : r.walls)

@@ -54,8 +54,12 @@ struct CfdPlantSettings {
   fv::Convection convection = fv::Convection::linear_upwind_limited;
   // Under-relaxation of U and p in every outer iteration but the last (fv::PimpleSettings).
   double relax_u = 1.0, relax_p = 1.0;
-  // The linear solves' relative tolerance in the outer iterations but the last (0: the last
-  // one's, 1e-8; fv::PimpleSettings::intermediate_tolerance).
+  int pressure_correctors = 2;  // per outer iteration
+  // SST in the last outer iteration only (fv::PimpleSettings::turbulence_final_only).
+  bool turbulence_final_only = false;
+  // The linear solves' relative tolerance (|b - A x| <= tolerance |b|) in the last outer
+  // iteration, and in the others (0: the same; fv::PimpleSettings::intermediate_tolerance).
+  double tolerance = 1e-8;
   double intermediate_tolerance = 0;
   // Degrees of freedom (u v w p q r): all, or DfbiBody::horizontal.
   std::array<bool, 6> free{true, true, true, true, true, true};

@@ -88,6 +88,10 @@ struct PimpleSettings {
   // On divergence the last good fields are written here (created if missing) as
   // last-good.vtu / .pvd (ParaView) and last-good.checkpoint (restart); empty: kept in memory.
   std::filesystem::path divergence_directory;
+  // A turbulence model's equations in the last outer iteration only, the eddy viscosity of the
+  // step before in the others (OpenFOAM's turbOnFinalIterOnly, its pimpleFoam default); a
+  // steady solve corrects it every iteration.
+  bool turbulence_final_only = false;
   double outer_tolerance = 0;  // stop the outer loop once momentum's initial residual is below
   // A steady solve (SIMPLE): no time derivative, and every outer iteration under-relaxed (U by
   // relax_u, p by relax_p, a turbulence model by its own): a step is one pass of the
