@@ -114,6 +114,12 @@ int run_case_command(const RunOptions& o) {
     fmt::print(stderr, "{} a stopped run's checkpoint, {}\n",
                o.resume ? "continuing from" : "starting afresh beside",
                options.checkpoint.string());
+  // The flow kept at [cfd] fields_at, beside the checkpoint until the run directory takes it; a
+  // resume keeps what the stopped run wrote.
+  if (spec.plant == engine::PlantKind::cfd && !spec.cfd.fields_at.empty()) {
+    options.fields = out + ".fields";
+    if (!(o.resume && stopped_run)) std::filesystem::remove_all(options.fields);
+  }
   const engine::CaseRun run = engine::run_case(spec, options);
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -128,8 +134,10 @@ int run_case_command(const RunOptions& o) {
     for (const auto& e : run.eigenvalues) eig.push_back({e.real(), e.imag()});
     report.metrics["linearization_eigenvalues_per_s"] = eig;
   }
+  report.fields = options.fields;
   const auto written = results::write_run_directory(out, report);
   std::filesystem::remove(options.checkpoint);  // the run's results are complete
+  if (!options.fields.empty()) std::filesystem::remove_all(options.fields);
   if (run.loop.checkpoint_warning)
     fmt::print(stderr, "warning: {}\n", *run.loop.checkpoint_warning);
   if (run.straight_run_warning) fmt::print(stderr, "warning: {}\n", *run.straight_run_warning);

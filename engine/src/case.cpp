@@ -147,11 +147,13 @@ void read_cfd(Table root, CaseSpec& c) {
   f.spin_up = t->number_or("spin_up", 2.0, Range::closed(0, 600), "s");
   f.relax_u = t->number_or("relax_u", 0.7, Range::open_closed(0, 1), "");
   f.relax_p = t->number_or("relax_p", 0.3, Range::open_closed(0, 1), "");
-  f.pressure_correctors = static_cast<int>(t->integer_or("pressure_correctors", 1, 1, 10));
+  f.pressure_correctors = static_cast<int>(t->integer_or("pressure_correctors", 2, 1, 10));
   f.turbulence_final_only = t->boolean_or("turbulence_final_only", true);
   f.tolerance = t->number_or("tolerance", 1e-6, Range::closed(1e-14, 1e-3), "");
   f.intermediate_tolerance =
       t->number_or("intermediate_tolerance", 1e-4, Range::closed(0, 0.1), "");
+  f.fields_at = t->optional_numbers("fields_at", 1, 100, Range::open_closed(0, c.duration), "s")
+                    .value_or(std::vector<double>{});
   t->finish();
 }
 
@@ -284,7 +286,8 @@ nlohmann::json canonical_json(const CaseSpec& c) {
                 {"pressure_correctors", c.cfd.pressure_correctors},
                 {"turbulence_final_only", c.cfd.turbulence_final_only},
                 {"tolerance", c.cfd.tolerance},
-                {"intermediate_tolerance", c.cfd.intermediate_tolerance}};
+                {"intermediate_tolerance", c.cfd.intermediate_tolerance},
+                {"fields_at_s", c.cfd.fields_at}};
     // The flow sees the vehicle's shape, not only its name: a vehicle file edited in place
     // must not find the old file's results or straight run.
     const auto& v = c.vehicle.vehicle;
@@ -441,6 +444,7 @@ CaseRun run_case(const CaseSpec& c, const CaseRunOptions& options) {
       options.resume && !options.checkpoint.empty() && std::filesystem::exists(options.checkpoint);
   const PresteroModel model(c.vehicle.vehicle, c.vehicle.hydrodynamics, c.buoyancy);
   std::unique_ptr<Plant> plant;
+  const CfdPlant* cfd_plant = nullptr;  // the CFD plant's output (after_step)
   CaseRun run;
   BodyState initial;
   initial.nu[0] = c.initial_speed;
@@ -508,6 +512,7 @@ CaseRun run_case(const CaseSpec& c, const CaseRunOptions& options) {
           fmt::format("the cfd plant's straight run before t = 0 diverged: {}", failure->reason);
       return run;
     }
+    cfd_plant = cfd.get();
     plant = std::move(cfd);
   } else {
     auto lin = linearize_straight_running(model, c.rpm, c.horizontal_linearization);
@@ -524,18 +529,51 @@ CaseRun run_case(const CaseSpec& c, const CaseRunOptions& options) {
   const double every = options.checkpoint_every > 0 ? options.checkpoint_every
                        : c.plant == PlantKind::cfd  ? 1.0
                                                     : 0.0;
-  run.loop =
-      run_closed_loop(*plant, sensors, *manoeuvre, actuators, initial,
-                      {.dt = c.dt,
-                       .duration = c.duration,
-                       .progress = progress,
-                       .progress_every = c.plant == PlantKind::cfd ? 1 : 100,
-                       .checkpoint = options.checkpoint,
-                       .checkpoint_every = every > 0 ? std::max(1L, std::lround(every / c.dt)) : 0,
-                       .checkpoint_key = options.checkpoint_key,
-                       .resume = options.resume});
+  // The steps whose flow is kept: the nearest to each of [cfd] fields_at.
+  std::vector<long> field_steps;
+  if (cfd_plant != nullptr && !options.fields.empty())
+    for (double t : c.cfd.fields_at) field_steps.push_back(std::max(1L, std::lround(t / c.dt)));
+  const auto keep_fields = [&](long step, double t) {
+    if (std::find(field_steps.begin(), field_steps.end(), step) == field_steps.end()) return;
+    namespace fs = std::filesystem;
+    fs::create_directories(options.fields);
+    cfd_plant->write_fields(options.fields / fmt::format("flow_{:06d}.vtu", step));
+    write_file_atomically(options.fields / fmt::format("snapshot_{:06d}.json", step),
+                          flow_snapshot_json(cfd_plant->snapshot(t)).dump() + "\n");
+  };
+  run.loop = run_closed_loop(
+      *plant, sensors, *manoeuvre, actuators, initial,
+      {.dt = c.dt,
+       .duration = c.duration,
+       .progress = progress,
+       .progress_every = c.plant == PlantKind::cfd ? 1 : 100,
+       .after_step = field_steps.empty() ? std::function<void(long, double)>{}
+                                         : std::function<void(long, double)>(keep_fields),
+       .checkpoint = options.checkpoint,
+       .checkpoint_every = every > 0 ? std::max(1L, std::lround(every / c.dt)) : 0,
+       .checkpoint_key = options.checkpoint_key,
+       .resume = options.resume});
   run.wall_clock = plant->wall_clock();
   return run;
+}
+
+nlohmann::json flow_snapshot_json(const FlowSnapshot& s) {
+  nlohmann::json speed = nlohmann::json::array();
+  for (double v : s.speed) speed.push_back(std::isfinite(v) ? nlohmann::json(v) : nlohmann::json());
+  nlohmann::json faces = nlohmann::json::array();
+  for (const auto& f : s.faces) faces.push_back({f.x, f.height, f.side, f.p});
+  return {{"time_s", s.time},
+          {"plane",
+           {{"x0_m", s.x0},
+            {"y0_m", s.y0},
+            {"h_m", s.h},
+            {"nx", s.nx},
+            {"ny", s.ny},
+            {"speed_m_per_s", speed}}},
+          {"fin",
+           {{"name", s.fin},
+            {"deflection_deg", s.deflection * 180 / std::numbers::pi},
+            {"faces_x_height_side_p", faces}}}};
 }
 
 }  // namespace auvloop::engine

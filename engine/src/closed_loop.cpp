@@ -223,7 +223,8 @@ LoopResult run_closed_loop(Plant& plant, Sensors& sensors, Manoeuvre& manoeuvre,
                                    plant.name(), t, t + dt, failure->reason);
       break;
     }
-    sensors.update(std::get<PlantStep>(r), applied, dt);  // 5
+    sensors.update(std::get<PlantStep>(r), applied, dt);                                   // 5
+    if (settings.after_step) settings.after_step(k + 1, static_cast<double>(k + 1) * dt);  // 6
     if (!settings.checkpoint.empty() && settings.checkpoint_every > 0 && k + 1 < steps &&
         (k + 1) % settings.checkpoint_every == 0)
       write_checkpoint(k + 1);

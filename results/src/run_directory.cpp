@@ -2,6 +2,7 @@
 #include "auvloop/results/run_directory.hpp"
 
 #include "auvloop/geometry/file_io.hpp"
+#include "flow_pictures.hpp"
 
 #include <fcntl.h>
 #include <spawn.h>
@@ -267,6 +268,7 @@ WriteOutcome write_run_directory(const fs::path& dir, const RunReport& r, WriteO
     std::string script;
     const std::vector<Source> sources{{"timeseries.csv", "", &r.series}};
     for (const auto& f : figures) script += plot_commands(f, sources);
+    script += flow_pictures(r.fields, scratch);
     if (options.plots) {
       outcome.plot_warning = run_gnuplot(scratch, script);
     } else {

@@ -125,6 +125,7 @@ int run_worker(const WorkerArgs& args) {
     options.checkpoint = args.job_file.parent_path() / "loop.checkpoint";
     options.checkpoint_key = key;
     options.resume = true;
+    if (!c.cfd.fields_at.empty()) options.fields = args.job_file.parent_path() / "fields";
   }
   engine::CaseRun run;
   try {
@@ -133,6 +134,7 @@ int run_worker(const WorkerArgs& args) {
     fmt::print(stderr, "worker: {}; starting afresh\n", e.what());
     std::error_code ignored;
     std::filesystem::remove(options.checkpoint, ignored);
+    if (!options.fields.empty()) std::filesystem::remove_all(options.fields, ignored);
     options.resume = false;
     run = engine::run_case(c, options);
   }
@@ -146,6 +148,7 @@ int run_worker(const WorkerArgs& args) {
   results::RunReport report{
       c.name,         canonical, run.loop.series, results::manoeuvre_metrics(c, run.loop.series),
       run.plant_name, wall,      run.loop.failure};
+  report.fields = options.fields;
   try {
     results::ResultCache(args.cache_root).store(report, {.plots = args.plots});
   } catch (const std::exception& e) {
@@ -155,6 +158,7 @@ int run_worker(const WorkerArgs& args) {
   if (!options.checkpoint.empty()) {
     std::error_code ignored;
     std::filesystem::remove(options.checkpoint, ignored);
+    if (!options.fields.empty()) std::filesystem::remove_all(options.fields, ignored);
   }
   append_execution(args.executions_log, fmt::format("{} {} {:.6f}\n", key, c.name, wall));
   fmt::print("worker: {} in {:.3f} s{}\n", run.loop.failure ? "failed" : "done", wall,

@@ -21,6 +21,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
 
 #include <tbb/global_control.h>
 
@@ -56,6 +60,48 @@ BodyState straight() {
   return s;
 }
 }  // namespace
+
+// The flow for pictures (item 6): the stern plane's lattice around the tail, no value in the
+// hull, the water's speed relative to the vehicle far from it about the towing speed (the
+// impulsive start's potential flow dies off with distance), the upper rudder's faces split by
+// side as their positions are; the ParaView file is written with its fields.
+TEST(CfdPlant, SnapshotShowsTheSternPlaneAndTheUpperRudder) {
+  CfdPlant plant(remus().vehicle, settings({false, false, false, false, false, false}));
+  plant.reset(straight());
+  ASSERT_TRUE(std::holds_alternative<PlantStep>(plant.advance(ActuatorValues{}, 0.002)));
+  const auto s = plant.snapshot(0.5, 0.01, 0.2, 0.3, 0.15);
+  EXPECT_EQ(s.nx, 51);
+  EXPECT_EQ(s.ny, 31);
+  ASSERT_EQ(s.speed.size(), 51U * 31U);
+  EXPECT_EQ(s.time, 0.5);
+  const auto at = [&](int i, int j) {
+    return s.speed[static_cast<std::size_t>(j) * 51 + static_cast<std::size_t>(i)];
+  };
+  const double tail = s.x0 + 0.2;
+  EXPECT_LT(tail, -0.7);  // the REMUS is 1.6 m long about its centre of buoyancy
+  EXPECT_TRUE(std::isnan(at(20 + 20, 15))) << "a point in the hull, 0.2 m ahead of its tail";
+  EXPECT_NEAR(at(0, 0), 1.54, 0.05) << "0.2 m behind the tail, 0.15 m to port";
+  EXPECT_NEAR(at(50, 30), 1.54, 0.05) << "0.3 m ahead of the tail, 0.15 m to starboard";
+  EXPECT_EQ(s.fin, "upper_rudder");
+  EXPECT_EQ(s.deflection, 0.0);
+  int sides[3] = {0, 0, 0};  // port, tip and root, starboard
+  for (const auto& f : s.faces) {
+    EXPECT_GT(f.height, 0.02);
+    EXPECT_TRUE(std::isfinite(f.p));
+    ++sides[f.side + 1];
+  }
+  EXPECT_GT(sides[0], 20);
+  EXPECT_GT(sides[1], 0);
+  EXPECT_LT(sides[1], sides[0]);
+  EXPECT_EQ(sides[0], sides[2]) << "the fin grid is symmetric about y = 0 at zero deflection";
+  const auto file = std::filesystem::temp_directory_path() / "auvloop-test-snapshot.vtu";
+  plant.write_fields(file);
+  std::ifstream in(file);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (const char* name : {"\"U\"", "\"U_rel\"", "\"p\"", "\"status\"", "\"k\"", "\"omega\""})
+    EXPECT_NE(text.find(name), std::string::npos) << name;
+  std::filesystem::remove(file);
+}
 
 TEST(CfdPlant, TowedHoldsTheBodyAndTheDiskCarriesTheCurvesLoad) {
   CfdPlant plant(remus().vehicle, settings({false, false, false, false, false, false}));

@@ -112,6 +112,44 @@ TEST(VehicleOverset, MotionsTurnEachFinAboutItsPost) {
   EXPECT_THROW((void)sys.motions(body, {0.1}), std::invalid_argument);
 }
 
+// Output: the grid ParaView shows has each fin grid turned to its deflection (its points by
+// fin_axes, the others where they were), and locate() finds the grid a point is in the flow of.
+TEST(VehicleOverset, PlacedGridTurnsTheFinsAndLocateFindsTheCellInTheFlow) {
+  auto sys = remus_coarse();
+  const std::vector<double> d{20 * kDeg, -10 * kDeg, 5 * kDeg, 0.0};
+  sys.set_fins(d);
+  const auto placed = sys.placed_grid();
+  const auto& merged = sys.composite().grid;
+  ASSERT_EQ(placed.points.size(), merged.points.size());
+  std::size_t first = sys.system().hull.points.size();
+  for (std::size_t i = 0; i < first; ++i) ASSERT_EQ(placed.points[i], merged.points[i]);
+  for (int k = 0; k < sys.fins(); ++k) {
+    const auto n = sys.system().fins[static_cast<std::size_t>(k)].points.size();
+    double worst = 0;
+    for (std::size_t i = first; i < first + n; ++i)
+      worst = std::max(worst, (placed.points[i] - sys.fin_axes(k) * merged.points[i]).norm());
+    EXPECT_LT(worst, 1e-15) << k;
+    first += n;
+  }
+  // The upper rudder turned by 20 deg: its trailing edge moved sideways by about chord x sin 20.
+  double moved = 0;
+  for (std::size_t i = sys.system().hull.points.size(); i < first; ++i)
+    moved = std::max(moved, (placed.points[i] - merged.points[i]).norm());
+  EXPECT_GT(moved, 0.01);
+  for (std::size_t i = first; i < placed.points.size(); ++i)
+    ASSERT_EQ(placed.points[i], merged.points[i]);  // the background
+  // Inside the hull no grid has a cell in the flow; far off the body only the background
+  // does; next to the hull's wall the hull grid's active cell.
+  EXPECT_EQ(sys.locate({0.0, 0.0, 0.0}), -1);
+  const int far = sys.locate({0.0, 0.0, 0.5});
+  ASSERT_GE(far, 0);
+  EXPECT_EQ(sys.overset().component_of(far), sys.background_component());
+  const int near = sys.locate({0.0, 0.0, 0.191 / 2 + 0.003});  // 3 mm off the mid-body
+  ASSERT_GE(near, 0);
+  EXPECT_EQ(sys.overset().component_of(near), 0);
+  EXPECT_TRUE(sys.overset().active(near));
+}
+
 TEST(VehicleOverset, BadDeflectionsAreRejectedKeepingTheCoupling) {
   auto sys = remus_coarse();
   const auto before = sys.assembly().grids[0].status;

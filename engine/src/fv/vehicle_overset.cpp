@@ -181,4 +181,33 @@ std::vector<FrameMotion> VehicleOverset::motions(const FrameMotion& body,
   return out;
 }
 
+mesher::Grid VehicleOverset::placed_grid() const {
+  mesher::Grid g = composite_.grid;
+  // The components' points lie one after another in the composite, in grids() order.
+  std::size_t first = system_->hull.points.size();
+  for (int k = 0; k < fins(); ++k) {
+    const auto& fin = system_->fins[static_cast<std::size_t>(k)];
+    const Eigen::Isometry3d axes = fin_axes(k);
+    for (std::size_t i = 0; i < fin.points.size(); ++i)
+      g.points[first + i] = axes * g.points[first + i];
+    first += fin.points.size();
+  }
+  return g;
+}
+
+int VehicleOverset::locate(const Eigen::Vector3d& x) const {
+  const int grids = 2 + fins();
+  int fringe = -1;
+  for (int n = 0; n < grids; ++n) {
+    // fins first (components 1 .. fins()), then the hull (0), then the background
+    const int g = n < fins() ? fin_component(n) : (n == fins() ? 0 : background_component());
+    const int cell = assembler_->locate(g, x);
+    if (cell < 0) continue;
+    const int c = composite_.cell_offset[static_cast<std::size_t>(g)] + cell;
+    if (overset_->active(c)) return c;
+    if (fringe < 0 && overset_->in_flow(c)) fringe = c;
+  }
+  return fringe;
+}
+
 }  // namespace auvloop::engine::fv

@@ -17,6 +17,8 @@
 
 namespace auvloop::engine {
 
+struct FlowSnapshot;  // cfd_plant.hpp
+
 enum class PlantKind { derivative, linearized, cfd };
 const char* to_string(PlantKind k);  // "derivative", "linearized", "cfd"
 // Throws std::invalid_argument naming the choices.
@@ -30,14 +32,17 @@ struct CfdSpec {
   bool horizontal = false;  // dof = "horizontal" (surge, sway, yaw) | "6dof"
   double spin_up = 2.0;     // s of straight running, towed, before the manoeuvre's t = 0
   double relax_u = 0.7, relax_p = 0.3;  // outer iterations but the last
-  // Measured on the heading step (docs/cfd-plant.md, "Cost per step"): one corrector, SST in
-  // the last outer iteration and the last solves to 1e-6 take a third off a step and move the
-  // indices by under 1 %.
-  int pressure_correctors = 1;        // per outer iteration
+  // Measured on the heading step (docs/cfd-plant.md, "Cost per step"): SST in the last outer
+  // iteration and the last solves to 1e-6 take a fifth off a step and move the indices by under
+  // 1 %; one corrector would take another fifth, but its runs diverged after about 20 s.
+  int pressure_correctors = 2;        // per outer iteration
   bool turbulence_final_only = true;  // SST in the last outer iteration only
   // The linear solves' relative tolerance in the last outer iteration, and in the others
   double tolerance = 1e-6;
   double intermediate_tolerance = 1e-4;
+  // Manoeuvre times (s) at which the flow is kept for a person: ParaView fields and the
+  // pictures of the stern plane and the upper rudder (CaseRunOptions::fields; docs/results.md)
+  std::vector<double> fields_at;
 };
 
 struct HeadingStepSpec {
@@ -141,7 +146,16 @@ struct CaseRunOptions {
   // straight run; the caller names it by the content hash of straight_run_json(). A damaged
   // file is computed afresh (a warning). Empty: computed every time.
   std::filesystem::path straight_run;
+  // A CFD case's [cfd] fields_at: at the step nearest each time, the fields for ParaView
+  // (flow_<step>.vtu, CfdPlant::write_fields) and the pictures' data (snapshot_<step>.json,
+  // flow_snapshot_json) go here, each file written atomically; a resumed run keeps the files of
+  // the steps before its checkpoint and writes the others again. Empty: none written.
+  std::filesystem::path fields;
 };
+
+// A FlowSnapshot as JSON (what results renders): time, the plane's lattice and speeds (null for
+// NaN), the fin's name, deflection (deg) and faces [x, height, side, p].
+nlohmann::json flow_snapshot_json(const FlowSnapshot& s);
 // Throws CheckpointError (state_archive.hpp) naming the file when a checkpoint to resume from is
 // another run's or damaged.
 CaseRun run_case(const CaseSpec& c, const CaseRunOptions& options);

@@ -81,6 +81,32 @@ struct CfdPlantSettings {
   std::filesystem::path divergence_directory;
 };
 
+// What the flow looks like at one instant, for pictures (issue 18 item 6; results renders them,
+// flow_snapshot.cpp computes them). Body axes, lengths in m.
+struct FlowSnapshot {
+  double time = 0;  // s
+  // The horizontal mid-plane z = 0 around the stern (the paper's Figure 20): the water's speed
+  // relative to the grid that holds it (m/s: the vehicle's own motion taken out, a fin grid's
+  // turning too) at nx x ny points x0 + i h, y0 + j h, index j nx + i; NaN in a solid. Each
+  // point takes the value of the cell that holds it (VehicleOverset::locate): no smoothing.
+  double x0 = 0, y0 = 0, h = 0;
+  int nx = 0, ny = 0;
+  std::vector<double> speed;
+  // The upper fin (the one reaching highest above the axis; on the REMUS the upper rudder, the
+  // paper's Figure 21): per wall face, the centre's x and height above the axis (-z) with the
+  // fin at zero deflection, the side (+1: starboard face, -1: port: the sign of the outward
+  // normal's y; 0: the tip and the root, |n_y| < 0.2) and the pressure (Pa, gauge against the far
+  // field's outflow) of its cell.
+  struct Face {
+    double x = 0, height = 0;
+    int side = 0;
+    double p = 0;
+  };
+  std::string fin;
+  double deflection = 0;  // rad, the fin's now
+  std::vector<Face> faces;
+};
+
 // What one advance() did, beside the state.
 struct CfdStepReport {
   double time = 0;                          // s, the flow's
@@ -140,6 +166,18 @@ class CfdPlant final : public Plant {
   // momentum, pressure, turbulence, flow-other (the step's end), rest; "overset" is not a phase
   // of its own: its share of momentum, pressure and flow-other is given as "of which overset".
   [[nodiscard]] std::vector<std::pair<std::string, double>> wall_clock() const override;
+
+  // The flow now, for pictures (FlowSnapshot): the stern plane on a lattice of spacing h (m)
+  // from `aft` m behind the hull's tail to `ahead` m in front of it and `half_width` m to
+  // either side.
+  // FlowSnapshot::time is `time` (s; the loop's clock: the flow's counts the straight run too).
+  [[nodiscard]] FlowSnapshot snapshot(double time, double h = 0.002, double aft = 0.25,
+                                      double ahead = 0.35, double half_width = 0.15) const;
+  // The fields for ParaView (VTK unstructured grid, written atomically): the grid system with
+  // the fins at their deflections, per cell U (the water's velocity, body axes, m/s), U_rel (it
+  // relative to the grid that holds it), p (Pa), the turbulence model's fields, and status
+  // (0 active, 1 fringe, 2 hole: threshold below 2 to hide the holes).
+  void write_fields(const std::filesystem::path& vtu) const;
 
   [[nodiscard]] const CfdStepReport& last() const { return report_; }
   [[nodiscard]] const fv::Pimple& flow() const;

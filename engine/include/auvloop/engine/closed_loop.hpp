@@ -5,7 +5,9 @@
 //   2. the manoeuvre (a controller or an open-loop schedule) computes the commands,
 //   3. the actuators advance: x_{k+1} = c_k + (x_k - c_k) exp(-dt / T), amplitude and rate limits,
 //   4. the plant advances from t_k to t_{k+1} holding x_{k+1},
-//   5. the sensors integrate the plant's accelerations and rates into the state of t_{k+1}.
+//   5. the sensors integrate the plant's accelerations and rates into the state of t_{k+1},
+//   6. the hook after_step (output of the plant at t_{k+1}: a CFD plant's fields), then the
+//      checkpoint when one is due.
 // Every signal is recorded at every t_k, angles in degrees. A plant failure stops the run; what
 // was recorded up to the last good step is kept and the failure is reported.
 // Checkpoints: with LoopSettings::checkpoint set, after every checkpoint_every-th step the loop's
@@ -105,10 +107,13 @@ struct LoopSettings {
   double duration = 30;                    // s
   std::function<void(double t)> progress;  // called now and then with the simulated time...
   int progress_every = 100;                // ...every this many steps (a CFD plant: every one)
-  std::filesystem::path checkpoint;        // empty: none
-  long checkpoint_every = 0;               // steps; 0: none written
-  std::string checkpoint_key;              // stored, and required equal on a resume
-  bool resume = false;                     // continue from `checkpoint` when it exists
+  // Step 6: called with k + 1 and t_{k+1}; what it writes must be written again alike by a
+  // resumed run that repeats the step (a checkpoint comes after it).
+  std::function<void(long step, double t)> after_step;
+  std::filesystem::path checkpoint;  // empty: none
+  long checkpoint_every = 0;         // steps; 0: none written
+  std::string checkpoint_key;        // stored, and required equal on a resume
+  bool resume = false;               // continue from `checkpoint` when it exists
 };
 
 struct LoopResult {

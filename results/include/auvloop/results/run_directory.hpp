@@ -29,6 +29,10 @@ struct RunReport {
   std::string plant;
   double wall_time_s = 0;
   std::optional<std::string> failure;  // the run diverged: series ends at the last good step
+  // A CFD run's kept flow (engine::CaseRunOptions::fields; empty: none): copied into the run
+  // directory's fields/ (ParaView: fields/flow.pvd) and drawn as stern-speed-t<T>.png and
+  // rudder-pressure-t<T>.png.
+  std::filesystem::path fields;
 };
 
 // SHA-256 (hex) of the canonical case JSON and the engine version: equal inputs, equal key.

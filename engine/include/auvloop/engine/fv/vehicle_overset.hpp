@@ -74,6 +74,13 @@ class VehicleOverset {
   // turbulence::WallDistances::update needs after set_fins.
   [[nodiscard]] std::vector<Eigen::Isometry3d> component_axes() const;
   [[nodiscard]] std::vector<std::vector<char>> cells_in_flow() const;
+  // Output (flow_snapshot.cpp): the composite grid with every fin grid turned to its present
+  // deflection, points in the body frame (the mesh the solver holds keeps them where they were
+  // merged); and the composite cell holding the body-frame point x in the flow: of the grids
+  // whose cell there is not a hole, the first with an active cell, in the order fins, hull,
+  // background, else the first with a fringe cell; -1 in a solid or outside every grid.
+  [[nodiscard]] mesher::Grid placed_grid() const;
+  [[nodiscard]] int locate(const Eigen::Vector3d& x) const;
   // Step 2: rates (rad/s, one per fin; empty: fins at rest).
   [[nodiscard]] std::vector<FrameMotion> motions(const FrameMotion& body,
                                                  const std::vector<double>& rates) const;
