@@ -541,18 +541,17 @@ CaseRun run_case(const CaseSpec& c, const CaseRunOptions& options) {
     write_file_atomically(options.fields / fmt::format("snapshot_{:06d}.json", step),
                           flow_snapshot_json(cfd_plant->snapshot(t)).dump() + "\n");
   };
-  run.loop = run_closed_loop(
-      *plant, sensors, *manoeuvre, actuators, initial,
-      {.dt = c.dt,
-       .duration = c.duration,
-       .progress = progress,
-       .progress_every = c.plant == PlantKind::cfd ? 1 : 100,
-       .after_step = field_steps.empty() ? std::function<void(long, double)>{}
-                                         : std::function<void(long, double)>(keep_fields),
-       .checkpoint = options.checkpoint,
-       .checkpoint_every = every > 0 ? std::max(1L, std::lround(every / c.dt)) : 0,
-       .checkpoint_key = options.checkpoint_key,
-       .resume = options.resume});
+  run.loop =
+      run_closed_loop(*plant, sensors, *manoeuvre, actuators, initial,
+                      {.dt = c.dt,
+                       .duration = c.duration,
+                       .progress = progress,
+                       .progress_every = c.plant == PlantKind::cfd ? 1 : 100,
+                       .after_step = keep_fields,
+                       .checkpoint = options.checkpoint,
+                       .checkpoint_every = every > 0 ? std::max(1L, std::lround(every / c.dt)) : 0,
+                       .checkpoint_key = options.checkpoint_key,
+                       .resume = options.resume});
   run.wall_clock = plant->wall_clock();
   return run;
 }

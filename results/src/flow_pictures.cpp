@@ -29,18 +29,12 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
-std::string quote(const std::string& s) {  // a gnuplot string literal
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("''") : std::string(1, c);
-  return out + "'";
-}
-
 std::string picture(const std::string& name, const std::string& body) {
   return fmt::format(
       "reset\nset datafile separator ','\nset termoption noenhanced\n"
       "set terminal pngcairo noenhanced size 1300,700 font 'DejaVu Sans,11'\nset output {}\n{}"
       "unset output\n",
-      quote(name + ".png"), body);
+      gnuplot_quote(name + ".png"), body);
 }
 }  // namespace
 
@@ -117,16 +111,17 @@ std::string flow_pictures(const fs::path& kept, const fs::path& dir) {
     // 3.
     script += picture(
         "stern-speed-" + tag,
-        fmt::format("set title {}\nset xlabel 'x (m, body axes, forward)'\n"
-                    "set ylabel 'y (m, starboard)'\nset size ratio -1\n"
-                    "set cblabel 'speed relative to the vehicle (m/s)'\nset cbrange [0:{:.3g}]\n"
-                    "set palette rgbformulae 22,13,-31\nset xrange [{}:{}]\nset yrange [{}:{}]\n"
-                    "plot {} using 1:2:3 with image notitle\n",
-                    quote(fmt::format("Plane z = 0 around the stern at t = {:.2f} s (white: the "
+        fmt::format(
+            "set title {}\nset xlabel 'x (m, body axes, forward)'\n"
+            "set ylabel 'y (m, starboard)'\nset size ratio -1\n"
+            "set cblabel 'speed relative to the vehicle (m/s)'\nset cbrange [0:{:.3g}]\n"
+            "set palette rgbformulae 22,13,-31\nset xrange [{}:{}]\nset yrange [{}:{}]\n"
+            "plot {} using 1:2:3 with image notitle\n",
+            gnuplot_quote(fmt::format("Plane z = 0 around the stern at t = {:.2f} s (white: the "
                                       "hull and fins)",
                                       t)),
-                    std::max(top, 1e-3), x0, x0 + (nx - 1) * h, y0, y0 + (ny - 1) * h,
-                    quote(plane_file)));
+            std::max(top, 1e-3), x0, x0 + (nx - 1) * h, y0, y0 + (ny - 1) * h,
+            gnuplot_quote(plane_file)));
     if (fin.at("faces_x_height_side_p").empty()) continue;
     const std::string name = fin.at("name");
     const double deflection = fin.at("deflection_deg");
@@ -134,20 +129,20 @@ std::string flow_pictures(const fs::path& kept, const fs::path& dir) {
       return fmt::format(
           "set title '{}'\nplot {} using 1:($3 {} 0 ? $2 : NaN):4 with points pt 5 ps 1.6 "
           "palette notitle\n",
-          title, quote(fin_file), side);
+          title, gnuplot_quote(fin_file), side);
     };
     script += picture(
         "rudder-pressure-" + tag,
-        fmt::format("set multiplot layout 1,2 title {}\nset cbrange [{:.4g}:{:.4g}]\n"
-                    "set palette rgbformulae 33,13,10\nset cblabel 'p (Pa, gauge)'\n"
-                    "set xlabel 'x (m, body axes, fin at zero deflection)'\n"
-                    "set ylabel 'height above the axis (m)'\nset size ratio -1\n{}{}"
-                    "unset multiplot\n",
-                    quote(fmt::format("{} at t = {:.2f} s, deflection {:.1f} deg: pressure on "
+        fmt::format(
+            "set multiplot layout 1,2 title {}\nset cbrange [{:.4g}:{:.4g}]\n"
+            "set palette rgbformulae 33,13,10\nset cblabel 'p (Pa, gauge)'\n"
+            "set xlabel 'x (m, body axes, fin at zero deflection)'\n"
+            "set ylabel 'height above the axis (m)'\nset size ratio -1\n{}{}"
+            "unset multiplot\n",
+            gnuplot_quote(fmt::format("{} at t = {:.2f} s, deflection {:.1f} deg: pressure on "
                                       "both faces",
                                       name, t, deflection)),
-                    lo, std::max(hi, lo + 1e-6), panel("port face", "<"),
-                    panel("starboard face", ">")));
+            lo, std::max(hi, lo + 1e-6), panel("port face", "<"), panel("starboard face", ">")));
   }
   return script;
 }

@@ -7,6 +7,9 @@
 
 namespace auvloop::results {
 
+// A gnuplot string literal (single quotes, a quote doubled) (run_directory.cpp).
+std::string gnuplot_quote(const std::string& s);
+
 // Copies the fields a run kept (`kept`: engine::CaseRunOptions::fields; nothing when empty or
 // missing) into DIR/fields with a ParaView collection, writes the pictures' data there and
 // returns the gnuplot commands that draw the pictures into DIR (run from DIR, with the run

@@ -21,6 +21,13 @@ extern char** environ;
 
 namespace auvloop::results {
 namespace fs = std::filesystem;
+
+std::string gnuplot_quote(const std::string& s) {
+  std::string out = "'";
+  for (char ch : s) out += ch == '\'' ? std::string("''") : std::string(1, ch);
+  return out + "'";
+}
+
 using nlohmann::json;
 
 std::string sha256_hex(std::string_view data) {
@@ -65,12 +72,6 @@ std::string csv(const engine::TimeSeries& series) {
     out += '\n';
   }
   return out;
-}
-
-std::string gnuplot_quote(const std::string& s) {
-  std::string out = "'";
-  for (char ch : s) out += ch == '\'' ? std::string("''") : std::string(1, ch);
-  return out + "'";
 }
 
 struct Source {

@@ -172,12 +172,11 @@ TEST(MatrixScaleRows, KeepsTheSolutionAndMakesTheStoppingTestHoldInEveryCell) {
 }
 
 namespace {
-// A turbulence model that only supplies nu_eff = nu0 (1 + a y) at every face centre.
-class LinearViscosity final : public fv::TurbulenceModel {
+// A turbulence model that only supplies a fixed nu_eff per face and does nothing else; the
+// models below build on it.
+class FixedViscosity : public fv::TurbulenceModel {
  public:
-  LinearViscosity(const fv::Mesh& mesh, double nu0, double a) {
-    for (int f = 0; f < mesh.faces(); ++f) nu_.push_back(nu0 * (1 + a * mesh.face_centre(f).y()));
-  }
+  explicit FixedViscosity(std::vector<double> nu) : nu_(std::move(nu)) {}
   void initialise(const fv::VectorField&, std::span<const double>) override {}
   void begin_step() override {}
   [[nodiscard]] std::span<const double> nu_eff() const override { return nu_; }
@@ -194,6 +193,13 @@ class LinearViscosity final : public fv::TurbulenceModel {
  private:
   std::vector<double> nu_;
 };
+
+// nu_eff = nu0 (1 + a y) at every face centre.
+std::vector<double> linear_viscosity(const fv::Mesh& mesh, double nu0, double a) {
+  std::vector<double> nu;
+  for (int f = 0; f < mesh.faces(); ++f) nu.push_back(nu0 * (1 + a * mesh.face_centre(f).y()));
+  return nu;
+}
 
 // Steady Couette flow (top wall at U) on n graded cells: the largest |u - exact| / U, and the
 // relative error of the walls' shear forces (fv::patch_force, which must take the model's
@@ -218,7 +224,7 @@ Couette couette(int n) {
   s.relax_p = 0.5;
   s.tolerance = 1e-12;
   fv::Pimple flow(mesh, s);
-  LinearViscosity model(mesh, nu0, a);
+  FixedViscosity model(linear_viscosity(mesh, nu0, a));
   flow.set_turbulence(&model);
   flow.U.fix(mesh, "bottom", {0, 0, 0});
   flow.U.fix(mesh, "top", {U, 0, 0});
@@ -337,29 +343,16 @@ TEST(FvEffectiveViscosity, CouetteFlowWithViscosityLinearInYIsSecondOrder) {
 
 namespace {
 // A model that records the outer iterations it is corrected in (in.final per call).
-class CorrectionLog final : public fv::TurbulenceModel {
+class CorrectionLog final : public FixedViscosity {
  public:
   explicit CorrectionLog(const fv::Mesh& mesh)
-      : nu_(static_cast<std::size_t>(mesh.faces()), 1e-3) {}
-  void initialise(const fv::VectorField&, std::span<const double>) override {}
+      : FixedViscosity(std::vector<double>(static_cast<std::size_t>(mesh.faces()), 1e-3)) {}
   void begin_step() override { calls.emplace_back(); }
-  [[nodiscard]] std::span<const double> nu_eff() const override { return nu_; }
   fv::TurbulenceReport correct(const fv::TurbulenceInput& in) override {
     calls.back().push_back(in.final);
     return {};
   }
-  void save() override {}
-  void restore() override {}
-  void check() const override {}
-  [[nodiscard]] std::vector<const fv::ScalarField*> fields() const override { return {}; }
-  [[nodiscard]] std::vector<fv::ScalarField*> fields() override { return {}; }
-  [[nodiscard]] std::vector<std::vector<double>*> state() override { return {&nu_}; }
-  void set_overset(const fv::Overset*) override {}
-  void carried(std::vector<Carried>& out) override { out.clear(); }
   std::vector<std::vector<bool>> calls;  // per step, per correction: in.final
-
- private:
-  std::vector<double> nu_;
 };
 
 std::vector<std::vector<bool>> corrections(bool final_only, double outer_tolerance) {

@@ -23,6 +23,7 @@
 
 #include <fmt/format.h>
 
+#include "auvloop/engine/fv/field.hpp"
 #include "auvloop/geometry/myring.hpp"
 #include "auvloop/mesher/grid_io.hpp"
 #include "cfd_plant_impl.hpp"
@@ -30,11 +31,8 @@
 namespace auvloop::engine {
 
 namespace {
-int patch_of(const fv::Mesh& mesh, const std::string& name) {
-  const auto& patches = mesh.grid().patches;
-  for (std::size_t i = 0; i < patches.size(); ++i)
-    if (patches[i].name == name) return static_cast<int>(i);
-  throw std::logic_error("CFD plant: no wall patch " + name);
+const mesher::Patch& wall(const fv::Mesh& mesh, const std::string& name) {
+  return mesh.grid().patches[static_cast<std::size_t>(fv::patch_index(mesh, name))];
 }
 }  // namespace
 
@@ -51,9 +49,7 @@ FlowSnapshot CfdPlant::snapshot(double time, double h, double aft, double ahead,
   FlowSnapshot s;
   s.time = time;
   // 1.
-  const auto& hull =
-      mesh.grid()
-          .patches[static_cast<std::size_t>(patch_of(mesh, fv::VehicleOverset::hull_wall()))];
+  const auto& hull = wall(mesh, fv::VehicleOverset::hull_wall());
   double tail = std::numeric_limits<double>::infinity();
   for (int i = 0; i < hull.size; ++i) tail = std::min(tail, mesh.face_centre(hull.start + i).x());
   s.h = h;
@@ -80,20 +76,20 @@ FlowSnapshot CfdPlant::snapshot(double time, double h, double aft, double ahead,
   }
   // 2.
   int upper = -1;
+  const mesher::Patch* upper_wall = nullptr;
   double highest = std::numeric_limits<double>::infinity();
   for (int k = 0; k < m.sys->fins(); ++k) {
-    const auto& patch =
-        mesh.grid().patches[static_cast<std::size_t>(patch_of(mesh, m.sys->fin_wall(k)))];
+    const auto& patch = wall(mesh, m.sys->fin_wall(k));
     double z = 0;
     for (int i = 0; i < patch.size; ++i) z += mesh.face_centre(patch.start + i).z();
     if (patch.size > 0 && z / patch.size < highest) {
       highest = z / patch.size;
       upper = k;
+      upper_wall = &patch;
     }
   }
-  if (upper >= 0) {
-    const auto& patch =
-        mesh.grid().patches[static_cast<std::size_t>(patch_of(mesh, m.sys->fin_wall(upper)))];
+  if (upper_wall != nullptr) {
+    const auto& patch = *upper_wall;
     s.fin = m.vehicle.fin_set.fins.at(static_cast<std::size_t>(upper)).name;
     s.deflection = m.sys->deflections()[static_cast<std::size_t>(upper)];
     for (int i = 0; i < patch.size; ++i) {
