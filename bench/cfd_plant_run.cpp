@@ -59,6 +59,17 @@ int main(int argc, char** argv) {
   double relax_u = 1, relax_p = 1;
   app.add_option("--relax-u", relax_u, "U's under-relaxation, outer iterations but the last");
   app.add_option("--relax-p", relax_p, "p's under-relaxation, outer iterations but the last");
+  int correctors = 2;
+  app.add_option("--pressure-correctors", correctors, "per outer iteration")
+      ->check(CLI::PositiveNumber);
+  double tolerance = 1e-8;
+  app.add_option("--tolerance", tolerance, "the last outer iteration's linear solves, relative")
+      ->check(CLI::PositiveNumber);
+  bool final_only = false;
+  app.add_flag("--turbulence-final-only", final_only, "SST in the last outer iteration only");
+  double max_courant = 0, max_speed = 20;
+  app.add_option("--max-courant", max_courant, "divergence guard (0: none)");
+  app.add_option("--max-speed", max_speed, "divergence guard on |U| (m/s; 0: none)");
   CLI11_PARSE(app, argc, argv);
   const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                                   static_cast<std::size_t>(threads));
@@ -73,6 +84,11 @@ int main(int argc, char** argv) {
   s.convection = engine::fv::convection_from_string(convection);
   s.relax_u = relax_u;
   s.relax_p = relax_p;
+  s.pressure_correctors = correctors;
+  s.tolerance = tolerance;
+  s.turbulence_final_only = final_only;
+  s.max_courant = max_courant;
+  s.max_flow_speed = max_speed;
   if (free == "none") {  // 2.
     s.free = {false, false, false, false, false, false};
   } else if (free == "surge") {
@@ -123,7 +139,7 @@ int main(int argc, char** argv) {
     if (out && !header) {
       out << "t,u,v,r,Fx_pressure,Fx_shear,J,inflow,thrust,torque,coupling_change,seconds,"
              "outer_residual,s_fins,s_coupling,s_momentum,s_pressure,s_turbulence,s_overset,"
-             "s_other,pressure_iterations";
+             "s_other,pressure_iterations,courant,max_speed";
       for (const auto& [name, f] : r.walls) out << fmt::format(",Fx_p_{0},Fx_v_{0}", name);
       out << "\n";
       header = true;
@@ -135,10 +151,10 @@ int main(int argc, char** argv) {
           r.time, st.u(), st.v(), st.r(), p.x(), v.x(), r.J, r.inflow_speed, r.thrust, r.torque,
           r.coupling_change, r.seconds, r.flow.outer_residual);
       const auto& fl = r.flow;
-      out << fmt::format(",{:.4g},{:.4g},{:.4g},{:.4g},{:.4g},{:.4g},{:.4g},{}", r.seconds_fins,
-                         r.seconds_coupling, fl.seconds_momentum, fl.seconds_pressure,
-                         fl.seconds_turbulence, fl.seconds_overset, fl.seconds_other,
-                         fl.pressure_iterations);
+      out << fmt::format(",{:.4g},{:.4g},{:.4g},{:.4g},{:.4g},{:.4g},{:.4g},{},{:.4g},{:.4g}",
+                         r.seconds_fins, r.seconds_coupling, fl.seconds_momentum,
+                         fl.seconds_pressure, fl.seconds_turbulence, fl.seconds_overset,
+                         fl.seconds_other, fl.pressure_iterations, fl.max_courant, fl.max_speed);
       for (const auto& [name, f] : r.walls)
         out << fmt::format(",{:.6g},{:.6g}", f.pressure.x(), f.viscous.x());
       out << "\n";
@@ -146,9 +162,10 @@ int main(int argc, char** argv) {
     if (n % every == 0 || n == steps)
       std::printf(
           "t %.3f s: u %.4f m/s, walls Fx %.3f N (pressure %.3f, shear %.3f), J %.3f, V_a "
-          "%.3f m/s, T %.3f N, Q %.4f N m; %.2f s/step, ETA %.0f s\n",
+          "%.3f m/s, T %.3f N, Q %.4f N m; Courant %.3g, max |U| %.3g m/s; %.2f s/step, ETA "
+          "%.0f s\n",
           r.time, st.u(), p.x() + v.x(), p.x(), v.x(), r.J, r.inflow_speed, r.thrust, r.torque,
-          spent / n, spent / n * (steps - n));
+          r.flow.max_courant, r.flow.max_speed, spent / n, spent / n * (steps - n));
     std::fflush(stdout);
   }
   return 0;

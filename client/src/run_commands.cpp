@@ -138,9 +138,11 @@ int run_case_command(const RunOptions& o) {
   const auto written = results::write_run_directory(out, report);
   std::filesystem::remove(options.checkpoint);  // the run's results are complete
   if (!options.fields.empty()) std::filesystem::remove_all(options.fields);
+  if (written.fields_warning) fmt::print(stderr, "warning: {}\n", *written.fields_warning);
   if (run.loop.checkpoint_warning)
     fmt::print(stderr, "warning: {}\n", *run.loop.checkpoint_warning);
   if (run.straight_run_warning) fmt::print(stderr, "warning: {}\n", *run.straight_run_warning);
+  if (run.fields_warning) fmt::print(stderr, "warning: {}\n", *run.fields_warning);
   if (!o.quiet) {
     fmt::print("{} ({}, {} plant, dt {} s, {} s simulated in {:.3f} s)\n", spec.name,
                spec.manoeuvre_type(), plant, spec.dt, run.loop.final_time, wall);

@@ -438,6 +438,24 @@ void prune_straight_runs(const std::filesystem::path& dir) {
 }
 }  // namespace
 
+CfdPlantSettings cfd_plant_settings(const CaseSpec& c) {
+  CfdPlantSettings s;
+  s.mesh = c.cfd.mesh;
+  s.outer_iterations = c.cfd.outer_iterations;
+  s.sst = c.cfd.sst;
+  if (c.cfd.horizontal) s.free = DfbiBody::horizontal;
+  s.relax_u = c.cfd.relax_u;
+  s.relax_p = c.cfd.relax_p;
+  s.pressure_correctors = c.cfd.pressure_correctors;
+  s.tolerance = c.cfd.tolerance;
+  s.turbulence_final_only = c.cfd.turbulence_final_only;
+  s.intermediate_tolerance = c.cfd.intermediate_tolerance;
+  s.reference_speed = std::max(c.initial_speed, 0.1);
+  s.added_mass = prestero_added_mass(c.vehicle.hydrodynamics);
+  s.neutral_buoyancy = c.buoyancy == Buoyancy::neutral;
+  return s;
+}
+
 CaseRun run_case(const CaseSpec& c, const CaseRunOptions& options) {
   const auto& progress = options.progress;
   const bool resuming =
@@ -452,21 +470,7 @@ CaseRun run_case(const CaseSpec& c, const CaseRunOptions& options) {
   if (c.plant == PlantKind::derivative) {
     plant = std::make_unique<DerivativePlant>(model);
   } else if (c.plant == PlantKind::cfd) {
-    CfdPlantSettings s;
-    s.mesh = c.cfd.mesh;
-    s.outer_iterations = c.cfd.outer_iterations;
-    s.sst = c.cfd.sst;
-    if (c.cfd.horizontal) s.free = DfbiBody::horizontal;
-    s.relax_u = c.cfd.relax_u;
-    s.relax_p = c.cfd.relax_p;
-    s.pressure_correctors = c.cfd.pressure_correctors;
-    s.tolerance = c.cfd.tolerance;
-    s.turbulence_final_only = c.cfd.turbulence_final_only;
-    s.intermediate_tolerance = c.cfd.intermediate_tolerance;
-    s.reference_speed = std::max(c.initial_speed, 0.1);
-    s.added_mass = prestero_added_mass(c.vehicle.hydrodynamics);
-    s.neutral_buoyancy = c.buoyancy == Buoyancy::neutral;
-    auto cfd = std::make_unique<CfdPlant>(c.vehicle.vehicle, s);
+    auto cfd = std::make_unique<CfdPlant>(c.vehicle.vehicle, cfd_plant_settings(c));
     // The straight run the manoeuvre starts from (progress below zero: before t = 0): a resumed
     // run's flow is in its checkpoint; a stored one is loaded; else it is computed (and stored).
     std::optional<PlantFailure> failure;
@@ -536,10 +540,14 @@ CaseRun run_case(const CaseSpec& c, const CaseRunOptions& options) {
   const auto keep_fields = [&](long step, double t) {
     if (std::find(field_steps.begin(), field_steps.end(), step) == field_steps.end()) return;
     namespace fs = std::filesystem;
-    fs::create_directories(options.fields);
-    cfd_plant->write_fields(options.fields / fmt::format("flow_{:06d}.vtu", step));
-    write_file_atomically(options.fields / fmt::format("snapshot_{:06d}.json", step),
-                          flow_snapshot_json(cfd_plant->snapshot(t)).dump() + "\n");
+    try {  // a full disk or a bad directory costs the pictures, never the run
+      fs::create_directories(options.fields);
+      cfd_plant->write_fields(options.fields / fmt::format("flow_{:06d}.vtu", step));
+      write_file_atomically(options.fields / fmt::format("snapshot_{:06d}.json", step),
+                            flow_snapshot_json(cfd_plant->snapshot(t)).dump() + "\n");
+    } catch (const std::exception& e) {
+      run.fields_warning = fmt::format("the flow at t = {:g} s was not kept: {}", t, e.what());
+    }
   };
   run.loop =
       run_closed_loop(*plant, sensors, *manoeuvre, actuators, initial,

@@ -269,7 +269,11 @@ WriteOutcome write_run_directory(const fs::path& dir, const RunReport& r, WriteO
     std::string script;
     const std::vector<Source> sources{{"timeseries.csv", "", &r.series}};
     for (const auto& f : figures) script += plot_commands(f, sources);
-    script += flow_pictures(r.fields, scratch);
+    try {  // damaged kept flow costs its pictures, never the run directory
+      script += flow_pictures(r.fields, scratch);
+    } catch (const std::exception& e) {
+      outcome.fields_warning = fmt::format("flow pictures skipped: {}", e.what());
+    }
     if (options.plots) {
       outcome.plot_warning = run_gnuplot(scratch, script);
     } else {

@@ -140,6 +140,7 @@ int run_worker(const WorkerArgs& args) {
   }
   if (!run.straight_run.empty()) fmt::print("worker: straight run {}\n", run.straight_run);
   if (run.straight_run_warning) fmt::print(stderr, "worker: {}\n", *run.straight_run_warning);
+  if (run.fields_warning) fmt::print(stderr, "worker: {}\n", *run.fields_warning);
   if (run.loop.resumed_at >= 0)
     fmt::print("worker: resumed at step {} from {}\n", run.loop.resumed_at,
                options.checkpoint.string());

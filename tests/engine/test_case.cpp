@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Case files: the shipped examples parse and run; bad files fail with file:line and the reason.
 #include <chrono>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -104,7 +105,8 @@ TEST(Case, BadFilesNameLineAndReason) {
 }
 
 TEST(Case, CfdExamplesParse) {
-  for (const char* name : {"cfd-heading-step.toml", "cfd-quickstart.toml"})
+  for (const char* name : {"cfd-heading-step.toml", "cfd-quickstart.toml", "cfd-yaw-trial.toml",
+                           "cfd-turning-circle.toml"})
     EXPECT_EQ(parse_case(example(name), name, AUVLOOP_SOURCE_DIR).plant, PlantKind::cfd) << name;
 }
 
@@ -209,7 +211,11 @@ TEST(Case, CfdStraightRunIsStoredAndReused) {
   EXPECT_EQ(snapshot["time_s"], 0.02);
   EXPECT_EQ(snapshot["fin"]["name"], "upper_rudder");
   EXPECT_GT(snapshot["plane"]["nx"], 100);
-  o.fields.clear();  // the second not: keeping it does not change the run
+  EXPECT_FALSE(first.fields_warning);
+  // The second cannot keep it (its directory would be under a file): a warning, and the run
+  // goes on unchanged.
+  std::ofstream(tmp.path() / "a-file") << "not a directory";
+  o.fields = tmp.path() / "a-file" / "fields";
   EXPECT_THAT(first.straight_run, HasSubstr("computed and stored"));
   ASSERT_TRUE(std::filesystem::exists(o.straight_run));
   EXPECT_FALSE(std::filesystem::exists(tmp.path() / "runs" / "old15.flow"));
@@ -218,6 +224,8 @@ TEST(Case, CfdStraightRunIsStoredAndReused) {
   ASSERT_FALSE(second.loop.failure) << *second.loop.failure;
   EXPECT_THAT(second.straight_run, HasSubstr("loaded from"));
   EXPECT_FALSE(second.straight_run_warning);
+  ASSERT_TRUE(second.fields_warning);
+  EXPECT_THAT(*second.fields_warning, HasSubstr("the flow at t = 0.02 s was not kept"));
   ASSERT_EQ(first.loop.series.rows(), 3U);
   for (std::size_t i = 0; i < first.loop.series.signals().size(); ++i) {
     const auto& a = first.loop.series.signals()[i].values;
@@ -226,4 +234,55 @@ TEST(Case, CfdStraightRunIsStoredAndReused) {
     EXPECT_EQ(0, std::memcmp(a.data(), b.data(), a.size() * sizeof(double)))
         << first.loop.series.signals()[i].name;
   }
+}
+
+// A diverging CFD run (issue 18's acceptance). Unrelaxed outer iterations from the impulsive
+// start run away at the nose rim (docs/cfd-plant.md, "Stability"): in the straight run before
+// t = 0 the case stops with the step, the time and the cell. From a straight run computed
+// relaxed (and stored), the unrelaxed 10 ms steps of the manoeuvre run away within a few steps:
+// the loop stops with a diagnosis naming the time and the cell, and the series keeps every step
+// before it, each value finite (after the first row, where no step has yet given the plant's
+// signals).
+TEST(Case, ADivergingCfdRunStopsWithADiagnosisAndKeepsEveryGoodStep) {
+  std::string text = example("cfd-quickstart.toml");
+  const auto set = [&](const std::string& from, const std::string& to) {
+    const auto at = text.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    text.replace(at, from.size(), to);
+  };
+  set("duration = 1 ", "duration = 0.2 ");
+  set("spin_up = 0.2 ", "spin_up = 0 ");
+  set("fields_at = [1.0]", "fields_at = [0.2]");
+  const CaseSpec relaxed = parse_case(text, "relaxed", AUVLOOP_SOURCE_DIR);
+  set("relax_u = 0.7 ", "relax_u = 1.0 ");
+  set("relax_p = 0.3", "relax_p = 1.0");
+  const CaseSpec c = parse_case(text, "unrelaxed", AUVLOOP_SOURCE_DIR);
+
+  const auto straight = run_case(c, CaseRunOptions{});
+  ASSERT_TRUE(straight.loop.failure) << "the unrelaxed straight run did not diverge";
+  std::printf("%s\n", straight.loop.failure->c_str());
+  EXPECT_THAT(*straight.loop.failure, HasSubstr("straight run before t = 0 diverged: "));
+  EXPECT_THAT(*straight.loop.failure, HasSubstr(" in cell "));
+  EXPECT_EQ(straight.loop.series.rows(), 0U);
+
+  auvloop::test::TempDir tmp;
+  CaseRunOptions o;
+  o.straight_run = tmp.path() / "straight.flow";
+  auto stored = relaxed;
+  stored.duration = 0.01;
+  ASSERT_FALSE(run_case(stored, o).loop.failure);
+  ASSERT_TRUE(std::filesystem::exists(o.straight_run));
+  const auto run = run_case(c, o);
+  ASSERT_TRUE(run.loop.failure) << "the unrelaxed manoeuvre did not diverge";
+  std::printf("%s\n", run.loop.failure->c_str());
+  EXPECT_THAT(run.straight_run, HasSubstr("loaded from"));
+  EXPECT_THAT(*run.loop.failure, HasSubstr("the cfd plant diverged between t = "));
+  EXPECT_THAT(*run.loop.failure, HasSubstr(" in cell "));
+  const auto rows = run.loop.series.rows();
+  ASSERT_GE(rows, 2U);
+  EXPECT_LT(rows, 21U);
+  EXPECT_NEAR(run.loop.final_time, static_cast<double>(rows - 1) * c.dt, 1e-12);
+  for (const auto& signal : run.loop.series.signals())  // row 0: the plant's signals are NaN
+    for (std::size_t i = 1; i < rows; ++i)
+      EXPECT_TRUE(std::isfinite(signal.values[i])) << signal.name << " at row " << i;
 }

@@ -159,6 +159,27 @@ TEST(FvPimple, DivergenceNamesStepAndCellAndKeepsTheLastGoodFields) {
   EXPECT_EQ(restarted.flow.U.c[0].cells, before);
 }
 
+TEST(FvPimple, ASpeedGuardStopsTheStepThatPassesIt) {
+  // The lid (1 m/s) drives the cavity: after a step the largest |U| in a cell is below the
+  // lid's. A guard at half that largest speed stops the same step in a fresh cavity, names the
+  // cell and keeps the fields before the step.
+  engine::fv::PimpleSettings s;
+  s.nu = 0.01;
+  s.dt = 0.05;
+  LidCavity free(s);
+  const auto r = free.flow.step();
+  EXPECT_GT(r.max_speed, 0.1);
+  EXPECT_LT(r.max_speed, 1.0);
+  s.max_speed = 0.5 * r.max_speed;
+  LidCavity guarded(s);
+  const auto before = guarded.flow.U.c[0].cells;
+  const std::string what = divergence_message(guarded.flow);
+  EXPECT_NE(what.find("step 1"), std::string::npos) << what;
+  EXPECT_NE(what.find("beyond the limit"), std::string::npos) << what;
+  EXPECT_NE(what.find("in cell"), std::string::npos) << what;
+  EXPECT_EQ(guarded.flow.U.c[0].cells, before);
+}
+
 TEST(FvPimple, ALinearSolveThatFailsNamesItsEquationAndCell) {
   // A tolerance no Krylov solver reaches: the first solve fails; the message says which.
   engine::fv::PimpleSettings s;

@@ -100,6 +100,12 @@ TEST(FV_SUITE, RemusOversetSst) {
 TEST(FV_SUITE, ActuatorDisk) {
   run("actuator-disk");
 }
+// The REMUS 100 towed without its propeller, hull alone and hull + fins (issue 18; quick: the
+// friction references against propeller.md and 20 steps of each on coarse; full: 4 s on
+// coarse, medium and fine, the drag on medium against ITTC-57 with form factors, and the GCI).
+TEST(FV_SUITE, RemusResistance) {
+  run("remus-resistance");
+}
 TEST(FV_SUITE, SchaeferTurek2d2Shedding) {
   run("schaefer-turek-2d2");
 }

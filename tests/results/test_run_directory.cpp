@@ -67,6 +67,20 @@ TEST(RunDirectory, DivergedRunsAreMarked) {
   EXPECT_EQ(back.series.rows(), 5U);  // what was computed is kept
 }
 
+TEST(RunDirectory, DamagedKeptFlowCostsItsPicturesOnly) {
+  test::TempDir tmp;
+  auto r = report(1.0);
+  r.fields = tmp.path() / "kept";
+  std::filesystem::create_directories(r.fields);
+  tmp.write("kept/snapshot_000100.json", "{ cut short");
+  const auto out = results::write_run_directory(tmp.path() / "d", r, {.plots = false});
+  ASSERT_TRUE(out.fields_warning);
+  EXPECT_NE(out.fields_warning->find("snapshot_000100.json: damaged"), std::string::npos);
+  const auto back = results::read_run_directory(tmp.path() / "d");
+  EXPECT_EQ(back.manifest["status"], "completed");
+  EXPECT_EQ(back.series.rows(), 5U);
+}
+
 TEST(RunDirectory, DamagedDirectoriesAreReported) {
   test::TempDir tmp;
   std::filesystem::create_directories(tmp.path() / "bad");

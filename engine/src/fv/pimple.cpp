@@ -298,6 +298,7 @@ StepReport Pimple::step() {
     const auto t0 = std::chrono::steady_clock::now();
     const auto [co, cell] = courant(mesh_, relative_flux(), dt_);
     r.max_courant = co;
+    r.max_speed = max_speed().first;
     Scratch<double> d(static_cast<std::size_t>(mesh_.cells()));
     div(mesh_, phi, *d);
     // Over the active cells of an overset mesh: the others solve no continuity equation.
@@ -336,6 +337,16 @@ StepReport Pimple::step() {
   return r;
 }
 
+std::pair<double, int> Pimple::max_speed() const {
+  std::pair<double, int> worst{0.0, 0};
+  for (int c = 0; c < mesh_.cells(); ++c) {
+    if (overset_ != nullptr && !overset_->active(c)) continue;
+    const double speed = U.cell(c).norm();
+    if (speed > worst.first) worst = {speed, c};
+  }
+  return worst;
+}
+
 void Pimple::check(const StepReport& r) const {
   const double bad = parallel_sum<1>(mesh_.cells(), [&](int lo, int hi, std::array<double, 1>& s) {
     for (int c = lo; c < hi; ++c)
@@ -346,6 +357,11 @@ void Pimple::check(const StepReport& r) const {
     const auto s = static_cast<std::size_t>(c);
     if (!std::isfinite(p.cells[s]) || !U.cell(c).allFinite())
       throw std::runtime_error("non-finite velocity or pressure in " + cell_at(mesh_, c));
+  }
+  if (settings_.max_speed > 0 && r.max_speed > settings_.max_speed) {
+    const auto [speed, cell] = max_speed();
+    throw std::runtime_error(fmt::format("|U| {:.3g} m/s beyond the limit {:.3g} m/s in {}", speed,
+                                         settings_.max_speed, cell_at(mesh_, cell)));
   }
   if (r.max_courant > settings_.max_courant) {
     const auto [co, cell] = courant(mesh_, phi_grid_.empty() ? phi : phi_rel_, dt_);

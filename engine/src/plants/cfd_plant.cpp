@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -44,6 +45,8 @@ void check(const CfdPlantSettings& s) {
   if (s.sense != 1 && s.sense != -1)
     bad(fmt::format("the propeller's sense must be +1 or -1, got {}", s.sense));
   if (!(s.runaway_speed > 0)) bad("runaway_speed must be positive");
+  if (!(s.max_flow_speed >= 0) || !(s.max_courant >= 0))
+    bad("the flow's guards max_flow_speed and max_courant must be at least 0 (0: none)");
   if (s.pressure_correctors < 1)
     bad(fmt::format("pressure_correctors must be at least 1, got {}", s.pressure_correctors));
   if (!(s.tolerance > 0 && s.tolerance < 1))
@@ -85,9 +88,10 @@ CfdPlant::CfdPlant(const geometry::Vehicle& vehicle, CfdPlantSettings settings)
   ps.turbulence_final_only = s.turbulence_final_only;
   ps.intermediate_tolerance = s.intermediate_tolerance;
   // The nose rim's and fin roots' tiny cells pass Courant numbers of several hundred at 2 ms
-  // and five times that at 10 ms while the flow stays smooth (measured): a guard against a
-  // runaway only.
-  ps.max_courant = 2e4;
+  // and five times that at 10 ms on coarse while the flow stays smooth (measured), more on finer
+  // grids: the guard against a runaway is the water's speed.
+  ps.max_courant = s.max_courant > 0 ? s.max_courant : std::numeric_limits<double>::infinity();
+  ps.max_speed = s.max_flow_speed;
   ps.divergence_directory = s.divergence_directory;
   m.flow = std::make_unique<fv::Pimple>(mesh, ps);
   m.flow->set_overset(&m.sys->overset());
@@ -127,8 +131,9 @@ CfdPlant::CfdPlant(const geometry::Vehicle& vehicle, CfdPlantSettings settings)
   const auto& overset = m.sys->overset();
   for (int c = 0; c < m.sys->composite().cells_of(0); ++c)
     hull[static_cast<std::size_t>(c)] = overset.active(c) ? 1 : 0;
-  m.disk = std::make_unique<fv::DiskForce>(
-      mesh, disk, hull, s.inflow_offset < 0 ? 0.25 * p.diameter : s.inflow_offset);
+  if (s.propeller)
+    m.disk = std::make_unique<fv::DiskForce>(
+        mesh, disk, hull, s.inflow_offset < 0 ? 0.25 * p.diameter : s.inflow_offset);
   m.flow->body_force.assign(static_cast<std::size_t>(mesh.cells()), Eigen::Vector3d::Zero());
   m.rates.assign(static_cast<std::size_t>(m.sys->fins()), 0.0);
   reset(BodyState{});
@@ -278,6 +283,8 @@ PlantResult CfdPlant::advance(const ActuatorValues& a, double dt) {
     return PlantFailure{fmt::format("CFD plant: time step must be positive, got {}", dt)};
   if (!(a.rpm >= 0 && std::isfinite(a.rpm)))
     return PlantFailure{fmt::format("CFD plant: rpm {} (the disk runs ahead only)", a.rpm)};
+  if (a.rpm > 0 && !m.disk)
+    return PlantFailure{fmt::format("CFD plant: rpm {}, but the plant has no propeller", a.rpm)};
   if (a.rpm > 0 && !m.settings.curve)
     return PlantFailure{"CFD plant: the propeller turns but has no open-water curve"};
   CfdStepReport r;

@@ -44,6 +44,10 @@ struct CfdPlant::Impl {
   void propel(const BodyState& body) {
     const double n = rpm / 60;  // rev/s
     const double D = vehicle.propeller.diameter;
+    if (!disk) {  // CfdPlantSettings::propeller false
+      J = inflow = thrust = torque = 0;
+      return;
+    }
     inflow = disk->inflow_speed(flow->U, body_motion(body));
     if (n > 0) {
       J = std::max(0.0, inflow) / (n * D);
@@ -61,6 +65,7 @@ struct CfdPlant::Impl {
     const auto total = fv::total_wall_force(*flow);
     Vector6d tau;
     tau << rho * total.total(), rho * total.total_moment();
+    if (!disk) return tau;
     const auto& d = disk->disk();
     const Eigen::Vector3d T = thrust * d.axis;
     tau.head<3>() += T;

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "auvloop/engine/validation.hpp"
+#include "rows.hpp"
 
 namespace auvloop::engine::validation {
 
@@ -115,13 +116,6 @@ Row interval_row(std::string quantity, double value, double lo, double hi) {
         0.0,
         false};
   r.pass = r.error <= 0.0;
-  return r;
-}
-
-// A measure that must stay at or below `limit` (a conservation error at the solver's tolerance).
-Row bound_row(std::string quantity, double value, double limit) {
-  Row r{std::move(quantity), value, 0.0, value, limit, false};
-  r.pass = value <= limit;  // NaN fails
   return r;
 }
 
@@ -343,13 +337,6 @@ Result run_schaefer_turek_2d2(bool quick, bool overset) {
   res.rows.push_back(interval_row("cL max", r.cl_max, 0.99, 1.01));
   return res;
 }
-// |value / reference - 1| within tolerance.
-Row relative_to(std::string quantity, double value, double reference, double tolerance) {
-  Row row{std::move(quantity), value, reference, std::abs(value / reference - 1), tolerance, false};
-  row.pass = row.error <= tolerance;
-  return row;
-}
-
 // A steady run that reached its stopping test (a row, so that a run that did not fails).
 Row converged_row(const std::string& grid, const FlatPlateResult& x) {
   return Row{grid + " converged", x.converged ? 1.0 : 0.0, 1.0, x.converged ? 0.0 : 1.0, 0.0,
@@ -808,6 +795,10 @@ const std::vector<Case>& cases() {
        "the propeller's Hough-Ordway body-force disk in a uniform stream: the induced speed "
        "through the disk against annular momentum theory",
        run_actuator_disk},
+      {"remus-resistance",
+       "the REMUS 100 towed at 1.54 m/s without its propeller, hull alone and hull + fins, "
+       "coarse, medium and fine: the drag against ITTC-57 with form factors, and its GCI",
+       run_remus_resistance},
       {"flat-plate-sst",
        "NASA TMR zero-pressure-gradient flat plate, SST k-omega: Cf(0.97) and CD against CFL3D",
        run_flat_plate_sst},

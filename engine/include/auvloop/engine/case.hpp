@@ -17,7 +17,8 @@
 
 namespace auvloop::engine {
 
-struct FlowSnapshot;  // cfd_plant.hpp
+struct FlowSnapshot;      // cfd_plant.hpp
+struct CfdPlantSettings;  // cfd_plant.hpp
 
 enum class PlantKind { derivative, linearized, cfd };
 const char* to_string(PlantKind k);  // "derivative", "linearized", "cfd"
@@ -119,6 +120,8 @@ struct CaseRun {
   // "in the checkpoint" (a resume); with a warning when a stored one could not be used.
   std::string straight_run;
   std::optional<std::string> straight_run_warning;
+  // The last of [cfd] fields_at whose flow could not be written (the run went on without it).
+  std::optional<std::string> fields_warning;
   // Where the plant's wall clock went in the manoeuvre (Plant::wall_clock; since the resume
   // for a resumed run): (phase, s); empty for a cheap plant.
   std::vector<std::pair<std::string, double>> wall_clock;
@@ -130,6 +133,9 @@ struct CaseRun {
 // straight run shares.
 nlohmann::json straight_run_json(const CaseSpec& c);
 CaseRun run_case(const CaseSpec& c, const std::function<void(double t)>& progress = {});
+// The CFD plant's settings of a case ([cfd], the initial speed, the buoyancy, Prestero's added
+// mass for the coupling), as run_case builds the plant.
+CfdPlantSettings cfd_plant_settings(const CaseSpec& c);
 
 // A run that can stop and continue (closed_loop.hpp, "Checkpoints").
 struct CaseRunOptions {

@@ -75,8 +75,16 @@ struct CfdPlantSettings {
   // a quarter of the diameter).
   std::function<OpenWaterPoint(double J)> curve;
   double inflow_offset = -1;
+  // false: no disk at all (a resistance run towed without its propeller; rpm must stay 0). A
+  // grid without the fins' zone may have no cells on the disk's inflow plane.
+  bool propeller = true;
   int sense = 1;              // the propeller turns right-handed about +x (REMUS: K_prop < 0)
   double runaway_speed = 20;  // m/s; beyond it the run stops as diverged
+  // The flow's divergence guards (fv::PimpleSettings::max_speed, max_courant; 0: none): water
+  // faster than this anywhere in the flow (m/s; the water round a vehicle at a few m/s moves at
+  // a few m/s) stops the run as diverged. No Courant guard by default: the Courant number grows
+  // as a grid is refined, and medium's nose-rim cells pass 2e4 at 10 ms (docs/cfd-plant.md).
+  double max_flow_speed = 20, max_courant = 0;
   // Where a diverging flow writes its last good fields (empty: kept in memory).
   std::filesystem::path divergence_directory;
 };

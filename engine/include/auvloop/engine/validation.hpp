@@ -16,6 +16,7 @@
 #include "auvloop/engine/fv/operators.hpp"
 #include "auvloop/engine/fv/pimple.hpp"
 #include "auvloop/engine/turbulence/sst_model.hpp"
+#include "auvloop/geometry/vehicle.hpp"
 #include "auvloop/mesher/cylinder_grid.hpp"
 #include "auvloop/mesher/flat_plate_grid.hpp"
 #include "auvloop/mesher/foil_grid.hpp"
@@ -55,6 +56,26 @@ struct Case {
 
 // The implemented cases, in the order `auvloop validate --list` shows them.
 const std::vector<Case>& cases();
+
+// The grid convergence index of one quantity on three systematically refined grids (Celik et
+// al. 2008; gci.cpp states the procedure), the finest first: cells N_i and values phi_i. Not
+// computable (NaN; `converged` false) when a change is zero, a ratio is not above 1 or the
+// apparent order's iteration does not converge to a positive order.
+struct GridConvergence {
+  double r21 = 0, r32 = 0;        // refinement ratios (N_fine / N_coarse)^(1/3)
+  bool oscillatory = false;       // the two changes differ in sign
+  bool converged = false;         // the apparent order's fixed-point iteration (mean_ratio: true)
+  double p = 0;                   // apparent order
+  double extrapolated = 0;        // Richardson's phi_ext21
+  double e_a21 = 0, e_ext21 = 0;  // approximate and extrapolated relative errors (fractions)
+  double gci21 = 0, gci32 = 0;    // the fine and the medium grid's GCI (fractions, Fs 1.25)
+  double asymptotic = 0;          // GCI32 / (r21^p GCI21): near 1 in the asymptotic range
+};
+// The apparent order: Celik's iteration for unequal ratios, or one mean ratio (the paper's).
+enum class OrderEstimate { celik, mean_ratio };
+GridConvergence grid_convergence(const std::array<double, 3>& cells,
+                                 const std::array<double, 3>& phi,
+                                 OrderEstimate order = OrderEstimate::celik);
 
 // Manufactured steady convection-diffusion on stretched, smoothly skewed hexahedra: the L2 and
 // maximum errors for n^3 cells and the observed orders between successive grids.
@@ -272,6 +293,45 @@ struct RemusOversetResult {
   std::vector<double> p, phi;
 };
 RemusOversetResult remus_overset(const RemusOversetRun& run);
+
+// remus-resistance (remus_resistance.cpp states the set-up): the REMUS 100 towed straight
+// without its propeller by the CFD plant (a case file's [cfd] defaults on `mesh`), hull + fins or
+// the hull alone, and the friction lines it is compared with.
+struct FrictionReference {
+  double hull_area = 0, hull_reynolds = 0, hull_form_factor = 0;  // m^2, -, -
+  double hull_friction = 0;  // N: ITTC-57 on the curved wetted area, without the form factor
+  double fin_area = 0, fin_reynolds = 0, fin_form_factor = 0;  // all fins; Re on the mean chord
+  double fin_friction = 0;                                     // N, all fins
+  // The same on twice the planform (a thin plate's wetted area, propeller.md's: the section's
+  // perimeter is 2.04 chords, not 2).
+  double fin_plate_area = 0, fin_plate_friction = 0;                              // m^2, N
+  [[nodiscard]] double hull() const { return hull_friction * hull_form_factor; }  // N
+  [[nodiscard]] double fins() const { return fin_friction * fin_form_factor; }    // N
+};
+FrictionReference friction_reference(const geometry::Vehicle& v, double speed, double nu);
+
+struct ResistanceRun {
+  std::string mesh = "coarse";
+  bool fins = true;                                    // false: the hull alone
+  double speed = 1.54, time = 4, dt = 0.01;            // m/s, s, s
+  std::function<void(double t, double drag)> on_step;  // N; progress
+};
+struct ResistanceResult {
+  int cells = 0, steps = 0;
+  std::string failure;  // empty, or the plant's
+  double seconds = 0;
+  // Per step: the drag's parts (N, along -x) and the walls' force across the stream (N).
+  std::vector<double> t, hull_pressure, hull_shear, fins_pressure, fins_shear, side_and_lift;
+  struct Mean {
+    double hull_pressure = 0, hull_shear = 0, fins_pressure = 0, fins_shear = 0;
+    double side_and_lift = 0;  // the largest over the interval
+    [[nodiscard]] double hull() const { return hull_pressure + hull_shear; }
+    [[nodiscard]] double fins() const { return fins_pressure + fins_shear; }
+    [[nodiscard]] double total() const { return hull() + fins(); }
+  };
+  [[nodiscard]] Mean mean(double from, double to) const;  // over the steps in (from, to]
+};
+ResistanceResult remus_resistance(const ResistanceRun& run);
 
 // The propeller's body-force disk in a uniform stream against annular momentum theory
 // (actuator_disk.cpp states the set-up): the disk-mean axial speed the solver gives and the one

@@ -41,7 +41,8 @@ std::string sha256_hex(std::string_view data);
 
 struct WriteOutcome {
   std::vector<std::string> files;
-  std::optional<std::string> plot_warning;  // plots skipped (gnuplot missing or failed)
+  std::optional<std::string> plot_warning;    // plots skipped (gnuplot missing or failed)
+  std::optional<std::string> fields_warning;  // the kept flow could not be read (RunReport::fields)
 };
 
 struct WriteOptions {

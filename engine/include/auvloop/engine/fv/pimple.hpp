@@ -85,6 +85,10 @@ struct PimpleSettings {
   // in its tutorials and in bench/openfoam_cavity.sh.
   ResidualNorm residual_norm = ResidualNorm::relative;
   double max_courant = 50;  // a step beyond this stops the run (divergence)
+  // A step whose largest |U| over the cells in the flow passes this (m/s) stops the run as well
+  // (0: no such guard). Unlike the Courant number it does not grow as a grid is refined: the
+  // guard for a run on a grid whose smallest cells pass large Courant numbers in a smooth flow.
+  double max_speed = 0;
   // On divergence the last good fields are written here (created if missing) as
   // last-good.vtu / .pvd (ParaView) and last-good.checkpoint (restart); empty: kept in memory.
   std::filesystem::path divergence_directory;
@@ -106,6 +110,7 @@ struct StepReport {
   double time = 0;
   double dt = 0;  // the step's time step (s)
   double max_courant = 0;
+  double max_speed = 0;          // m/s, the largest |U| over the cells in the flow after the step
   double momentum_residual = 0;  // initial normalised residual, first outer iteration (max comp)
   double pressure_residual = 0;  // initial normalised residual, first corrector
   double outer_residual = 0;     // initial momentum residual of the last outer iteration
@@ -277,6 +282,8 @@ class Pimple {
   // faces zero).
   void face_flux(const std::array<std::vector<double>, 3>& u, std::vector<double>& flux) const;
   void check(const StepReport& r) const;
+  // The largest |U| over the cells in the flow (an overset mesh's active cells) and its cell.
+  [[nodiscard]] std::pair<double, int> max_speed() const;
   [[nodiscard]] std::string write_last_good() const;
   void adapt_time_step();
   [[nodiscard]] TimeScheme time_scheme() const {
