@@ -70,11 +70,17 @@ int main(int argc, char** argv) {
   double max_courant = 0, max_speed = 20;
   app.add_option("--max-courant", max_courant, "divergence guard (0: none)");
   app.add_option("--max-speed", max_speed, "divergence guard on |U| (m/s; 0: none)");
+  bool laminar = false;
+  app.add_flag("--laminar", laminar, "no turbulence model");
+  bool no_fins = false, no_propeller = false;
+  app.add_flag("--no-fins", no_fins, "the hull alone (remus-resistance's bare hull)");
+  app.add_flag("--no-propeller", no_propeller, "no disk at all (towed resistance; rpm 0)");
   CLI11_PARSE(app, argc, argv);
   const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                                   static_cast<std::size_t>(threads));
   const auto model = engine::load_vehicle_model("preset:remus100");
-  const auto& vehicle = model.vehicle;
+  auto vehicle = model.vehicle;
+  if (no_fins) vehicle.fin_set.fins.clear();
   engine::CfdPlantSettings s;  // 1.
   s.mesh = mesh;
   s.outer_iterations = outer;
@@ -89,6 +95,8 @@ int main(int argc, char** argv) {
   s.turbulence_final_only = final_only;
   s.max_courant = max_courant;
   s.max_flow_speed = max_speed;
+  s.propeller = !no_propeller;
+  s.sst = !laminar;
   if (free == "none") {  // 2.
     s.free = {false, false, false, false, false, false};
   } else if (free == "surge") {
