@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // `auvloop validate [NAME...] [--quick] [--json] [--list]`: runs the CFD engine's verification and
-// validation cases (engine/validation.hpp) and prints, per case, quantity, auvloop's value, the
-// reference, the error, the tolerance and pass/fail. Exit 0 only when every row passes.
+// validation cases (engine/validation.hpp) and the CFD plant's trials (results/trials.hpp), and
+// prints, per case, quantity, auvloop's value, the reference, the error, the tolerance and
+// pass/fail. Exit 0 only when every row passes.
 #include <algorithm>
 #include <chrono>
 #include <iostream>
@@ -10,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "auvloop/engine/validation.hpp"
+#include "auvloop/results/trials.hpp"
 #include "cli.hpp"
 
 namespace auvloop::cli {
@@ -52,8 +54,18 @@ void print_table(const validation::Result& r, double seconds) {
   }
 }
 
+// The engine's cases, then the CFD plant's closed-loop trials (results/trials.hpp).
+const std::vector<validation::Case>& all_cases() {
+  static const auto all = [] {
+    auto cases = validation::cases();
+    for (auto& c : results::trial_cases()) cases.push_back(std::move(c));
+    return cases;
+  }();
+  return all;
+}
+
 int run_validate(const ValidateOptions& o) {
-  const auto& all = validation::cases();
+  const auto& all = all_cases();
   if (o.list) {
     std::size_t width = 0;
     for (const auto& c : all) width = std::max(width, c.name.size());
