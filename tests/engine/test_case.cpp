@@ -27,6 +27,12 @@ std::string example(const std::string& name) {
   s << in.rdbuf();
   return s.str();
 }
+// Replaces the first `from` in `text` by `to` (a failure when `from` is not there).
+void replace(std::string& text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  ASSERT_NE(at, std::string::npos) << from;
+  text.replace(at, from.size(), to);
+}
 std::string error_of(std::string text, const std::string& from, const std::string& to) {
   if (!from.empty()) {
     const auto pos = text.find(from);
@@ -155,11 +161,7 @@ TEST(Case, CfdTableIsReadCheckedAndHashed) {
 // keeps its flow at the last step (fields_at), which changes nothing of the run.
 TEST(Case, CfdStraightRunIsStoredAndReused) {
   std::string text = example("cfd-quickstart.toml");
-  const auto set = [&](const std::string& from, const std::string& to) {
-    const auto at = text.find(from);
-    ASSERT_NE(at, std::string::npos) << from;
-    text.replace(at, from.size(), to);
-  };
+  const auto set = [&](const std::string& from, const std::string& to) { replace(text, from, to); };
   set("duration = 1 ", "duration = 0.02 ");
   set("spin_up = 0.2 ", "spin_up = 0 ");
   set("outer_iterations = 5 ", "outer_iterations = 3 ");
@@ -245,11 +247,7 @@ TEST(Case, CfdStraightRunIsStoredAndReused) {
 // signals).
 TEST(Case, ADivergingCfdRunStopsWithADiagnosisAndKeepsEveryGoodStep) {
   std::string text = example("cfd-quickstart.toml");
-  const auto set = [&](const std::string& from, const std::string& to) {
-    const auto at = text.find(from);
-    ASSERT_NE(at, std::string::npos) << from;
-    text.replace(at, from.size(), to);
-  };
+  const auto set = [&](const std::string& from, const std::string& to) { replace(text, from, to); };
   set("duration = 1 ", "duration = 0.2 ");
   set("spin_up = 0.2 ", "spin_up = 0 ");
   set("fields_at = [1.0]", "fields_at = [0.2]");

@@ -177,6 +177,12 @@ void CfdPlant::reset(const BodyState& initial) {
   report_ = {};
 }
 
+int CfdPlant::spin_up_steps(double duration, double dt) {
+  const double start = std::min(dt, kStartDt);
+  return kStartSteps +
+         static_cast<int>(std::lround(std::max(0.0, duration - kStartSteps * start) / dt));
+}
+
 std::optional<PlantFailure> CfdPlant::spin_up(const BodyState& initial, double rpm, double duration,
                                               double dt,
                                               const std::function<void(double t)>& progress) {
@@ -186,9 +192,7 @@ std::optional<PlantFailure> CfdPlant::spin_up(const BodyState& initial, double r
   ActuatorValues a;
   a.rpm = rpm;
   const double start = std::min(dt, kStartDt);
-  const int steps =
-      kStartSteps +
-      static_cast<int>(std::lround(std::max(0.0, duration - kStartSteps * start) / dt));
+  const int steps = spin_up_steps(duration, dt);
   double t = 0;
   for (int n = 0; n < steps; ++n) {
     const double h = n < kStartSteps ? start : dt;

@@ -18,6 +18,7 @@
 
 #include <fmt/format.h>
 
+#include "auvloop/engine/cfd_plant.hpp"
 #include "auvloop/engine/vehicle_model.hpp"
 #include "rows.hpp"
 
@@ -89,7 +90,7 @@ Result run_remus_resistance(bool quick) {
       const auto r = remus_resistance(run);
       const std::string what = fmt::format("{}, {}", mesh, fins ? "hull + fins" : "hull alone");
       if (!r.failure.empty()) res.notes.push_back(what + ": failed: " + r.failure);
-      const double planned = 10 + std::round((time - 0.02) / run.dt);
+      const double planned = CfdPlant::spin_up_steps(time, run.dt);
       res.rows.push_back(
           bound_row("steps not completed / planned, " + what, 1.0 - r.steps / planned, 0.0));
       if (quick) {

@@ -155,6 +155,8 @@ class CfdPlant final : public Plant {
                                       const std::function<void(double t)>& progress = {});
   static constexpr int kStartSteps = 10;
   static constexpr double kStartDt = 0.002;  // s
+  // The steps spin_up(duration, dt) takes.
+  static int spin_up_steps(double duration, double dt);
   PlantResult advance(const ActuatorValues& actuators, double dt) override;
   [[nodiscard]] const BodyState& state() const override { return dfbi_.state(); }
   // Exact checkpoint: the body (Dfbi::history), the fins' deflections, the flow with its old time
