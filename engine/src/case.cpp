@@ -11,6 +11,7 @@
 #include "auvloop/engine/cfd_plant.hpp"
 #include "auvloop/engine/derivative_plant.hpp"
 #include "auvloop/geometry/file_io.hpp"
+#include "auvloop/mesher/mesh_settings.hpp"
 
 namespace auvloop::engine {
 namespace {
@@ -152,6 +153,7 @@ void read_cfd(Table root, CaseSpec& c) {
   f.tolerance = t->number_or("tolerance", 1e-6, Range::closed(1e-14, 1e-3), "");
   f.intermediate_tolerance =
       t->number_or("intermediate_tolerance", 1e-4, Range::closed(0, 0.1), "");
+  f.max_flow_speed = t->number_or("max_flow_speed", 20, Range::positive(), "m/s");
   f.fields_at = t->optional_numbers("fields_at", 1, 100, Range::open_closed(0, c.duration), "s")
                     .value_or(std::vector<double>{});
   t->finish();
@@ -277,6 +279,7 @@ nlohmann::json canonical_json(const CaseSpec& c) {
   if (c.plant == PlantKind::cfd) {
     const auto& w = c.vehicle.vehicle.propeller.open_water;
     j["cfd"] = {{"mesh", c.cfd.mesh},
+                {"mesh_revision", mesher::mesh_preset_revision()},
                 {"outer_iterations", c.cfd.outer_iterations},
                 {"turbulence", c.cfd.sst ? "sst" : "laminar"},
                 {"dof", c.cfd.horizontal ? "horizontal" : "6dof"},
@@ -287,6 +290,7 @@ nlohmann::json canonical_json(const CaseSpec& c) {
                 {"turbulence_final_only", c.cfd.turbulence_final_only},
                 {"tolerance", c.cfd.tolerance},
                 {"intermediate_tolerance", c.cfd.intermediate_tolerance},
+                {"max_flow_speed_m_s", c.cfd.max_flow_speed},
                 {"fields_at_s", c.cfd.fields_at}};
     // The flow sees the vehicle's shape, not only its name: a vehicle file edited in place
     // must not find the old file's results or straight run.
@@ -450,6 +454,7 @@ CfdPlantSettings cfd_plant_settings(const CaseSpec& c) {
   s.tolerance = c.cfd.tolerance;
   s.turbulence_final_only = c.cfd.turbulence_final_only;
   s.intermediate_tolerance = c.cfd.intermediate_tolerance;
+  s.max_flow_speed = c.cfd.max_flow_speed;
   s.reference_speed = std::max(c.initial_speed, 0.1);
   s.added_mass = prestero_added_mass(c.vehicle.hydrodynamics);
   s.neutral_buoyancy = c.buoyancy == Buoyancy::neutral;

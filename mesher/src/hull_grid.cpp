@@ -30,6 +30,7 @@ void check_spec(const geometry::MyringProfile& profile, const HullGridSpec& s) {
   check(s.growth >= 1, "growth", fmt::format("must be at least 1 (got {})", s.growth));
   check(s.rim_clustering >= 1, "rim_clustering", "must be at least 1");
   check(s.rim_fan >= 1, "rim_fan", "must be at least 1");
+  check(s.rim_radius >= 0, "rim_radius", "must not be negative (0: sharp rims)");
   check(s.fin_clustering >= 0 && s.fin_clustering < 1, "fin_clustering", "must be in [0, 1)");
   check(s.fins == 0 || s.circumferential % s.fins == 0, "circumferential",
         fmt::format("must be a multiple of the number of fins ({})", s.fins));
@@ -60,6 +61,7 @@ class ArcLength {
   }
   [[nodiscard]] double total() const { return arc_.back(); }
   [[nodiscard]] double station(double arc) const { return lookup(arc_, station_, arc); }
+  [[nodiscard]] double arc(double station) const { return lookup(station_, arc_, station); }
 
  private:
   // Linear interpolation of `to` at `x` in the increasing table `from`.
@@ -117,19 +119,29 @@ std::vector<double> zone_fractions(const ArcLength& arc, const HullGridSpec& s,
   return f;
 }
 
-// Arc-length nodes along the curved profile: rim-clustered, and with a stern zone a share
-// `fin_zone_share` of them spread by the zone weight instead (the nodes of the mixture of the two
-// distributions, found by inverting it on a fine table).
-std::vector<double> body_nodes(const ArcLength& arc, const HullGridSpec& s) {
-  auto sigma = graded_nodes(0, arc.total(), s.body_cells, s.rim_clustering, true);
-  if (!has_fin_zone(s) || s.fin_zone_share == 0) return sigma;
+// Arc-length nodes along the curved profile from arc length `begin` to `end` (the rims, or the
+// fillets' tangent points): rim-clustered (by rim_clustering; with fillets, two-sided to the end
+// sizes `first` and `last`), and with a stern zone a share `fin_zone_share` of them spread by the
+// zone weight instead (the nodes of the mixture of the two distributions, found by inverting it
+// on a fine table). The mixture's end cells are the rim distribution's over 1 - share where the
+// zone weight vanishes, so the rim distribution's ends are scaled down by that factor.
+std::vector<double> body_nodes(const ArcLength& arc, const HullGridSpec& s, double begin,
+                               double end, double first = 0, double last = 0) {
+  const bool zone = has_fin_zone(s) && s.fin_zone_share > 0;
+  const double keep = zone ? 1 - s.fin_zone_share : 1;
+  const double uniform = (end - begin) / s.body_cells;
+  auto sigma = first > 0 && keep * keep * first * last < uniform * uniform
+                   ? two_sided_nodes(begin, end, s.body_cells, keep * first, keep * last)
+               : first > 0 ? graded_nodes(begin, end, s.body_cells)
+                           : graded_nodes(begin, end, s.body_cells, s.rim_clustering, true);
+  if (!zone) return sigma;
   constexpr int kSamples = 8000;
   std::vector<double> at;
-  for (int k = 0; k <= kSamples; ++k) at.push_back(arc.total() * k / kSamples);
-  const auto rim = node_fractions(sigma, at), zone = zone_fractions(arc, s, at);
+  for (int k = 0; k <= kSamples; ++k) at.push_back(begin + (end - begin) * k / kSamples);
+  const auto rim = node_fractions(sigma, at), zone_f = zone_fractions(arc, s, at);
   std::vector<double> mixed;
   for (std::size_t k = 0; k < at.size(); ++k)
-    mixed.push_back((1 - s.fin_zone_share) * rim[k] + s.fin_zone_share * zone[k]);
+    mixed.push_back((1 - s.fin_zone_share) * rim[k] + s.fin_zone_share * zone_f[k]);
   for (int k = 1; k < s.body_cells; ++k) {
     const double target = k / static_cast<double>(s.body_cells);
     const auto it = std::lower_bound(mixed.begin(), mixed.end(), target);
@@ -162,7 +174,113 @@ struct WallLines {
   [[nodiscard]] int size() const { return static_cast<int>(point.size()); }
 };
 
+// A rim rounded by a circular arc of radius R, tangent to the end face and to the curved hull:
+// the centre lies R inside both, so for the nose it solves c.x = R with c = P(x) - R n(x) (P the
+// profile point at station x, n its outward unit normal), and for the tail c.x = L - R; x is
+// found by bisection (c.x rises with x wherever R is below the profile's radius of curvature, and
+// c.x - goal changes sign over the bracket [0, R] or [L - R, L] for any slope). The arc runs
+// between the polar angles `from` (the end face's normal: pi at the nose, 0 at the tail) and
+// `to` (the hull's normal at the tangent station `station`).
+struct Fillet {
+  Vec2 centre = Vec2::Zero();
+  double from = 0, to = 0, station = 0;
+};
+
+Fillet fillet(const geometry::MyringProfile& p, double radius, bool nose) {
+  const auto normal = [&](double x) -> Vec2 {
+    const double m = p.slope(x);
+    return Vec2(-m, 1.0) / std::sqrt(1 + m * m);
+  };
+  const auto centre = [&](double x) -> Vec2 { return Vec2(x, p.radius(x)) - radius * normal(x); };
+  const double length = p.length(), goal = nose ? radius : length - radius;
+  double lo = nose ? 0.0 : length - radius, hi = nose ? radius : length;
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (centre(mid).x() < goal ? lo : hi) = mid;
+  }
+  Fillet f;
+  f.station = 0.5 * (lo + hi);
+  f.centre = centre(f.station);
+  f.from = nose ? std::numbers::pi : 0.0;
+  const Vec2 n = normal(f.station);
+  f.to = std::atan2(n.y(), n.x());
+  check(f.centre.y() > 0, "rim_radius",
+        fmt::format("({:.4g} m) rounds away the whole {} face: it must be smaller", radius,
+                    nose ? "nose" : "tail"));
+  return f;
+}
+
+// Distances from a filleted rim towards the axis along its end face (length `face`): n cells, the
+// one at the rim `h` (the arc's cell) unless uniform cells are finer.
+std::vector<double> face_distances(double face, int n, double h) {
+  if (n == 1 || h >= face / n) return graded_nodes(0, face, n);
+  return stretched_nodes(0, face, h, n);
+}
+
+// Wall lines round filleted rims: the nose face from the axis, the nose arc, the curved hull
+// between the tangent stations, the tail arc and the tail face to the axis. The arcs' lines are
+// their radii (the exact normals); every other line is the average of its two segments' normals,
+// as for sharp rims, and every line owns its wall point (no fan, no collapsed cells).
+WallLines filleted_wall_lines(const geometry::MyringProfile& p, const HullGridSpec& s) {
+  const double radius = s.rim_radius;
+  const Fillet nose = fillet(p, radius, true), tail = fillet(p, radius, false);
+  const double h_nose = radius * std::abs(nose.to - nose.from) / s.rim_fan;
+  const double h_tail = radius * std::abs(tail.to - tail.from) / s.rim_fan;
+  std::vector<Vec2> w, exact;  // wall points, and the exact normal where known (else zero)
+  const auto add = [&](Vec2 point, Vec2 dir) {
+    w.push_back(point);
+    exact.push_back(dir);
+  };
+  const auto nose_face = face_distances(nose.centre.y(), s.nose_face_cells, h_nose);
+  for (auto it = nose_face.rbegin(); it + 1 != nose_face.rend(); ++it)  // axis up, arc excluded
+    add(Vec2(0.0, nose.centre.y() - *it), Vec2::Zero());
+  const auto arc_points = [&](const Fillet& f) {
+    for (int k = 0; k <= s.rim_fan; ++k) {
+      const double phi = f.from + (f.to - f.from) * k / s.rim_fan;
+      const Vec2 dir(std::cos(phi), std::sin(phi));
+      add(f.centre + radius * dir, dir);
+    }
+  };
+  const auto reverse = [](Fillet f) {
+    std::swap(f.from, f.to);
+    return f;
+  };
+  arc_points(nose);
+  const ArcLength arc(p);
+  const auto sigma =
+      body_nodes(arc, s, arc.arc(nose.station), arc.arc(tail.station), h_nose, h_tail);
+  for (std::size_t k = 1; k + 1 < sigma.size(); ++k) {
+    const double st = arc.station(sigma[k]);
+    add(Vec2(st, p.radius(st)), Vec2::Zero());
+  }
+  arc_points(reverse(tail));
+  const auto tail_face = face_distances(tail.centre.y(), s.tail_face_cells, h_tail);
+  for (std::size_t k = 1; k < tail_face.size(); ++k)  // arc excluded, down to the axis
+    add(Vec2(p.length(), tail.centre.y() - tail_face[k]), Vec2::Zero());
+  w.front().y() = 0;
+  w.back().y() = 0;
+
+  WallLines lines;
+  for (std::size_t i = 0; i < w.size(); ++i) {
+    lines.point.push_back(w[i]);
+    lines.owner.push_back(lines.size() - 1);
+    if (i == 0 || i + 1 == w.size()) {  // the axis ahead of the nose and behind the tail
+      lines.dir.emplace_back(i == 0 ? -1.0 : 1.0, 0.0);
+    } else if (exact[i] != Vec2::Zero()) {
+      lines.dir.push_back(exact[i]);
+    } else {
+      const auto normal = [&](std::size_t a, std::size_t b) {
+        const Vec2 t = (w[b] - w[a]).normalized();
+        return Vec2(-t.y(), t.x());
+      };
+      lines.dir.push_back((normal(i - 1, i) + normal(i, i + 1)).normalized());
+    }
+  }
+  return lines;
+}
+
 WallLines wall_lines(const geometry::MyringProfile& p, const HullGridSpec& s) {
+  if (s.rim_radius > 0) return filleted_wall_lines(p, s);
   const double r_nose = p.radius(0), r_tail = p.radius(p.length());
   std::vector<Vec2> w;
   std::vector<std::size_t> rims;  // indices (in w) of the two rim points
@@ -171,7 +289,7 @@ WallLines wall_lines(const geometry::MyringProfile& p, const HullGridSpec& s) {
     w.emplace_back(0.0, r);
   rims.push_back(w.size() - 1);
   const ArcLength arc(p);
-  const auto sigma = body_nodes(arc, s);
+  const auto sigma = body_nodes(arc, s, 0, arc.total());
   for (std::size_t k = 1; k + 1 < sigma.size(); ++k) {
     const double st = arc.station(sigma[k]);
     w.emplace_back(st, p.radius(st));

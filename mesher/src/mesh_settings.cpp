@@ -34,6 +34,7 @@ struct Preset {
   const char* name;
   double yplus;
   int nose, body, tail, circumferential, rim_fan;
+  double rim_radius;  // m
   double hull_growth, hull_extent, fin_zone_share;
   int chordwise, span, te_fan;
   double fin_growth, fin_extent;
@@ -54,11 +55,16 @@ struct Preset {
 //    0.07 m coarse background, 0.2 m at 0.04 m and 0.032 m.
 // The coarse far field grows by 2 (1.8 cost 3.6 k more cells and changed no stencil). Coarse and
 // medium grids are for wall functions (y+ 30 and 5 with the all-y+ treatment); fine resolves the
-// viscous sublayer (y+ 1).
+// viscous sublayer (y+ 1). Every preset rounds the rims by the same 5 mm fillet (one body for the
+// grid study; a sharp rim's wedge cells made medium diverge, docs/mesher.md), with 2 / 3 / 5 cells
+// on each arc (1.8 / 1.2 / 0.7 mm at the nose) and the end faces' and hull's wall cells grading
+// down to them: 8 / 10 / 14 nose-face cells and 3 / 5 / 7 on the tail face keep the faces' growth
+// at about 1.3 / 1.25 / 1.2, and 32 / 56 / 96 cells along the hull keep its largest cells at about
+// 120 / 70 / 40 mm with a growth of 1.4 / 1.2 / 1.1 from the arcs.
 constexpr Preset kPresets[] = {
-    {"coarse", 30, 3, 28, 2, 40, 3, 1.5, 0.3, 0.15, 8, 4, 3, 1.8, 0.1, 0.07, 2.0},
-    {"medium", 5, 5, 48, 4, 48, 5, 1.25, 0.2, 0.15, 10, 8, 6, 1.5, 0.1, 0.04, 1.4},
-    {"fine", 1, 8, 96, 6, 56, 8, 1.15, 0.2, 0.15, 20, 16, 10, 1.35, 0.1, 0.032, 1.15},
+    {"coarse", 30, 8, 32, 3, 40, 2, 0.005, 1.5, 0.3, 0.15, 8, 4, 3, 1.8, 0.1, 0.07, 2.0},
+    {"medium", 5, 10, 56, 5, 48, 3, 0.005, 1.25, 0.2, 0.15, 10, 8, 6, 1.5, 0.1, 0.04, 1.4},
+    {"fine", 1, 14, 96, 7, 56, 5, 0.005, 1.15, 0.2, 0.15, 20, 16, 10, 1.35, 0.1, 0.032, 1.15},
 };
 }  // namespace
 
@@ -69,6 +75,10 @@ double flat_plate_wall_distance(double yplus, double speed, double nu, double le
 
 double flat_plate_yplus(double height, double speed, double nu, double length) {
   return height / flat_plate_wall_distance(1.0, speed, nu, length);
+}
+
+int mesh_preset_revision() {
+  return 2;
 }
 
 std::vector<std::string> mesh_preset_names() {
@@ -86,6 +96,7 @@ MeshSettings mesh_preset(std::string_view name, const geometry::Vehicle& v) {
     s.hull.tail_face_cells = p.tail;
     s.hull.circumferential = p.circumferential;
     s.hull.rim_fan = p.rim_fan;
+    s.hull.rim_radius = p.rim_radius;
     s.hull.growth = p.hull_growth;
     s.hull.extent = p.hull_extent;
     s.hull.fin_zone_share = p.fin_zone_share;
@@ -127,6 +138,7 @@ void read_hull(input::Table t, HullGridSpec& h, bool& first_given) {
   h.rim_clustering =
       t.number_or("rim_clustering", h.rim_clustering, input::Range::closed(1, 2), "");
   read_counts(t, "rim_fan", h.rim_fan, 1);
+  h.rim_radius = t.number_or("rim_radius", h.rim_radius, input::Range::non_negative(), "m");
   h.fin_clustering =
       t.number_or("fin_clustering", h.fin_clustering, input::Range{0, 1, false, true}, "");
   h.fin_zone_share =

@@ -60,6 +60,32 @@ TEST(Grid, GradedNodes) {
   for (std::size_t i = 0; i < s.size(); ++i) EXPECT_NEAR(s[i] + s[s.size() - 1 - i], 1.0, 1e-15);
 }
 
+// Vinokur's two-sided stretching corrected to its end cells: both within 1e-8 of their targets,
+// sizes growing monotonically to a single largest cell and back, and bad arguments refused.
+TEST(Grid, TwoSidedNodesHitTheirEndSizes) {
+  struct Case {
+    double a, b;
+    int n;
+    double first, last;
+  };
+  for (const Case& c : {Case{0, 1, 48, 0.002, 0.005}, Case{0.3, 1.7, 20, 0.01, 0.01},
+                        Case{0, 2, 96, 1e-3, 4e-3}, Case{-1, 0, 12, 0.02, 0.05}}) {
+    const auto x = two_sided_nodes(c.a, c.b, c.n, c.first, c.last);
+    ASSERT_EQ(static_cast<int>(x.size()), c.n + 1);
+    EXPECT_EQ(x.front(), c.a);
+    EXPECT_EQ(x.back(), c.b);
+    EXPECT_NEAR((x[1] - x[0]) / c.first, 1, 1e-8) << c.n;
+    EXPECT_NEAR((x[x.size() - 1] - x[x.size() - 2]) / c.last, 1, 1e-8) << c.n;
+    std::size_t rising = 1;
+    while (rising + 1 < x.size() && x[rising + 1] - x[rising] > x[rising] - x[rising - 1]) ++rising;
+    for (std::size_t i = rising + 1; i + 1 < x.size(); ++i)
+      EXPECT_LT(x[i + 1] - x[i], x[i] - x[i - 1]) << "not a single peak at node " << i;
+  }
+  EXPECT_THROW((void)two_sided_nodes(0, 1, 10, 0.1, 0.2), std::invalid_argument);  // not finer
+  EXPECT_THROW((void)two_sided_nodes(0, 1, 1, 0.01, 0.01), std::invalid_argument);
+  EXPECT_THROW((void)two_sided_nodes(1, 0, 10, 0.01, 0.01), std::invalid_argument);
+}
+
 TEST(Grid, DistortedHexahedraStayClosedAndConserveVolume) {
   // Interior points moved at random: faces become non-planar, cells skewed. Closure must hold to
   // round-off and the cell volumes must still add up to the box (each face contributes the same

@@ -294,6 +294,122 @@ TEST(HullGrid, SternZoneRefinesOnlyNearTheFins) {
   EXPECT_NEAR(width_at_fin(0.6), step, 1e-12);
 }
 
+namespace {
+// Largest ratio of the volumes of two cells that share a face, both touching the wall (a corner
+// on the patch "hull": the first layer, and the rim fans' wedges, whose wall edge collapses).
+// Away from the wall the cells round a convex corner widen with the distance while those over the
+// flat end face do not: a ratio of the corner, not of the wall cells.
+double largest_wall_neighbour_volume_ratio(const Grid& g, const GridGeometry& geo) {
+  const Patch& wall = test::patch_named(g, "hull");
+  std::vector<bool> on_wall(g.points.size(), false), touches(static_cast<std::size_t>(g.cells));
+  for (int f = wall.start; f < wall.start + wall.size; ++f)
+    for (int k = 0; k < g.face_size(f); ++k)
+      on_wall[static_cast<std::size_t>(g.face_point(f, k))] = true;
+  for (int f = 0; f < g.faces(); ++f)
+    for (int k = 0; k < g.face_size(f); ++k)
+      if (on_wall[static_cast<std::size_t>(g.face_point(f, k))]) {
+        touches[static_cast<std::size_t>(g.owner[static_cast<std::size_t>(f)])] = true;
+        if (f < g.internal_faces())
+          touches[static_cast<std::size_t>(g.neighbour[static_cast<std::size_t>(f)])] = true;
+      }
+  double worst = 1;
+  for (int f = 0; f < g.internal_faces(); ++f) {
+    const auto o = static_cast<std::size_t>(g.owner[static_cast<std::size_t>(f)]);
+    const auto n = static_cast<std::size_t>(g.neighbour[static_cast<std::size_t>(f)]);
+    if (!touches[o] || !touches[n]) continue;
+    const double a = geo.cell_volume[o], b = geo.cell_volume[n];
+    worst = std::max(worst, std::max(a / b, b / a));
+  }
+  return worst;
+}
+
+HullGridSpec filleted_spec() {
+  HullGridSpec s = small_spec();
+  s.nose_face_cells = 12;
+  s.tail_face_cells = 8;
+  s.rim_fan = 4;
+  s.first_cell = 1e-4;
+  s.growth = 1.25;
+  s.normal_cells = 0;
+  s.rim_radius = 0.005;
+  return s;
+}
+}  // namespace
+
+// Rims rounded by a 5 mm fillet: valid cells with triangles only on the axis (no fan, no wedge),
+// every wall point on the rounded body (the end faces, the arcs at 5 mm from their centres,
+// tangent to face and hull, or the exact profile), the wall cells next to each arc within 25 % of
+// the arc's own (the grading down to it), and neighbouring cells at the wall within a factor of 4
+// in volume where the sharp rims' wedges are hundreds of times smaller than the cells beside them.
+TEST(HullGrid, FilletedRimsHaveNoWedgeCells) {
+  const geometry::MyringProfile profile(remus().hull);
+  const double cb = remus().mass.cb_station, L = profile.length();
+  const HullGridSpec s = filleted_spec();
+  const Grid g = hull_grid(profile, cb, s);
+  const GridGeometry geo = compute_geometry(g);
+  ASSERT_NO_THROW(validate(g, geo));
+  EXPECT_EQ(test::inward_boundary_faces(g, geo), 0);
+  int triangles = 0;
+  for (int f = 0; f < g.faces(); ++f) triangles += g.face_size(f) == 3;
+  const int nj = static_cast<int>(
+      g.cells /
+      (s.circumferential * (s.nose_face_cells + s.body_cells + s.tail_face_cells + 2 * s.rim_fan)));
+  EXPECT_EQ(triangles, 2 * (nj + 1) * s.circumferential);
+
+  auto m = wall_meridian(g, test::patch_named(g, "hull"), cb, s.circumferential);
+  ASSERT_EQ(static_cast<int>(m.size()),
+            s.nose_face_cells + s.body_cells + s.tail_face_cells + 2 * s.rim_fan + 1);
+  // Classify each point: end face, profile, or arc (then its centre is the point minus R times
+  // the unit normal, found from the points either side; a single centre per arc).
+  int on_face = 0, on_profile = 0, on_arc = 0;
+  for (const auto& q : m) {
+    if (q.x() == 0 || q.x() == L) {
+      ++on_face;
+    } else if (std::abs(q.y() - profile.radius(q.x())) < 1e-12) {
+      ++on_profile;
+    } else {
+      ++on_arc;
+      EXPECT_TRUE(q.x() < s.rim_radius || q.x() > L - s.rim_radius) << q.x();
+      EXPECT_LT(q.y(), profile.radius(q.x()));  // inside the sharp body
+    }
+  }
+  // The arcs' tangent points lie on the face and on the profile; their rim_fan - 1 inner points
+  // on neither.
+  EXPECT_EQ(on_arc, 2 * (s.rim_fan - 1));
+  EXPECT_EQ(on_face, s.nose_face_cells + s.tail_face_cells + 2);
+  EXPECT_EQ(on_profile, s.body_cells + 1);
+  // Arc points are R from a common centre (the nose arc's first s.rim_fan + 1 points after the
+  // face's; centre at x = R, tangent to the face).
+  const auto arc_check = [&](std::size_t first, double cx) {
+    const double cy = m[first].y();  // the face tangent point has the centre's radius
+    for (int k = 0; k <= s.rim_fan; ++k) {
+      const auto& q = m[first + static_cast<std::size_t>(k)];
+      EXPECT_NEAR(std::hypot(q.x() - cx, q.y() - cy), s.rim_radius, 1e-9) << k;
+    }
+    // Segment lengths either side of the arc's ends within 25 % of the arc's chords.
+    const auto seg = [&](std::size_t i) { return (m[i + 1] - m[i]).norm(); };
+    const double arc_cell = seg(first);
+    EXPECT_NEAR(seg(first - 1) / arc_cell, 1, 0.25);
+    EXPECT_NEAR(seg(first + static_cast<std::size_t>(s.rim_fan)) / arc_cell, 1, 0.25);
+  };
+  arc_check(static_cast<std::size_t>(s.nose_face_cells), s.rim_radius);
+  // The tail: mirrored (the meridian runs down the tail face at its end).
+  std::vector<Eigen::Vector2d> mirrored(m.rbegin(), m.rend());
+  for (auto& q : mirrored) q.x() = L - q.x();
+  std::swap(m, mirrored);
+  arc_check(static_cast<std::size_t>(s.tail_face_cells), s.rim_radius);
+
+  const double filleted = largest_wall_neighbour_volume_ratio(g, geo);
+  HullGridSpec sharp = s;
+  sharp.rim_radius = 0;
+  const Grid gs = hull_grid(profile, cb, sharp);
+  const double wedged = largest_wall_neighbour_volume_ratio(gs, compute_geometry(gs));
+  std::printf("largest volume ratio of wall neighbours: filleted %.2f, sharp %.1f\n", filleted,
+              wedged);
+  EXPECT_LT(filleted, 4.0);
+  EXPECT_GT(wedged, 100.0);
+}
+
 TEST(HullGrid, BadSettingsNameTheSetting) {
   const geometry::MyringProfile profile(remus().hull);
   const auto error = [&](auto edit) {
@@ -314,4 +430,7 @@ TEST(HullGrid, BadSettingsNameTheSetting) {
   EXPECT_THAT(error([](auto& s) { s.growth = 0.9; }), HasSubstr("growth"));
   EXPECT_THAT(error([](auto& s) { s.fin_zone_share = 1; }), HasSubstr("fin_zone_share"));
   EXPECT_THAT(error([](auto& s) { s.fin_zone_ramp = 0; }), HasSubstr("fin_zone_ramp"));
+  EXPECT_THAT(error([](auto& s) { s.rim_radius = -1e-3; }), HasSubstr("rim_radius"));
+  EXPECT_THAT(error([](auto& s) { s.rim_radius = 0.05; }),
+              HasSubstr("rim_radius (0.05 m) rounds away the whole tail face"));
 }

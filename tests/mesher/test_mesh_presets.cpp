@@ -61,8 +61,10 @@ TEST(MeshPresetsSlow, Fine) {
   check_preset("fine", 1000000);
 }
 #else
+// The budget was 50 k; the rounded rims (mesh revision 2, docs/mesher.md) brought coarse
+// to 63.8 k, and its budget here is that size.
 TEST(MeshPresets, Coarse) {
-  check_preset("coarse", 50000);
+  check_preset("coarse", 64000);
 }
 TEST(MeshPresets, Medium) {
   check_preset("medium", 250000);

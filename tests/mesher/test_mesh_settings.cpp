@@ -62,10 +62,12 @@ TEST(MeshSettings, FileOverridesThePreset) {
   const MeshSettings s = parse(
       "[mesh]\npreset = \"coarse\"\nhull_yplus = 2\n"
       "fin_deflections = [10, -10, 0, 35]\n"
-      "[mesh.hull]\nbody_cells = 33\n[mesh.fin]\nfirst_cell = 1e-4\n"
+      "[mesh.hull]\nbody_cells = 33\nrim_radius = 0\n[mesh.fin]\nfirst_cell = 1e-4\n"
       "[mesh.background]\nspacing = 0.07\n");
   EXPECT_EQ(s.preset, "coarse");
   EXPECT_EQ(s.hull.body_cells, 33);
+  EXPECT_EQ(mesh_preset("coarse", remus()).hull.rim_radius, 0.005);  // every preset's fillet
+  EXPECT_EQ(s.hull.rim_radius, 0.0);                                 // the sharp rims again
   EXPECT_EQ(s.hull.circumferential, mesh_preset("coarse", remus()).hull.circumferential);
   const double L = geometry::MyringProfile(remus().hull).length();
   EXPECT_NEAR(flat_plate_yplus(s.hull.first_cell, s.design_speed, s.kinematic_viscosity, L), 2,
@@ -85,6 +87,8 @@ TEST(MeshSettings, BadSettingsAreLocatedAndNamed) {
               HasSubstr("not a multiple of 4"));
   EXPECT_THAT(parse_error("[mesh]\npreset = \"medum\"\n"), HasSubstr("mesh.preset"));
   EXPECT_THAT(parse_error("[mesh]\n[mesh.fin]\nspan_cels = 3\n"), HasSubstr("span_cells"));
+  EXPECT_THAT(parse_error("[mesh]\n[mesh.hull]\nrim_radius = -0.001\n"),
+              HasSubstr("case.toml:3:1: mesh.hull.rim_radius"));
   // Checks that need the vehicle: a first cell taller than the hull, a deflection past the limit.
   MeshSettings s = mesh_preset("coarse", remus());
   s.hull.first_cell = 0.2;

@@ -41,6 +41,9 @@ struct CfdSpec {
   // The linear solves' relative tolerance in the last outer iteration, and in the others
   double tolerance = 1e-6;
   double intermediate_tolerance = 1e-4;
+  // Divergence guard: water faster than this (m/s) anywhere in the flow stops the run as diverged
+  // (CfdPlantSettings::max_flow_speed).
+  double max_flow_speed = 20;
   // Manoeuvre times (s) at which the flow is kept for a person: ParaView fields and the
   // pictures of the stern plane and the upper rudder (CaseRunOptions::fields; docs/results.md)
   std::vector<double> fields_at;

@@ -28,6 +28,14 @@ struct HullGridSpec {
   double extent = 0.08;          // m, distance from the wall to the outer boundary
   double rim_clustering = 1.06;  // cell growth away from the nose and tail rims along the wall
   int rim_fan = 6;               // lines fanning round each rim (end face to curved hull)
+  // Fillet radius (m) rounding each rim: 0 keeps the sharp corner of the truncated Myring profile
+  // with its fan of wedge cells (collapsed on the rim circle); above 0 each rim is a circular arc
+  // tangent to the end face and to the curved hull, gridded with `rim_fan` cells whose wall lines
+  // are its radii, and the end faces' and the hull's wall cells grade down to the arc's cell size
+  // next to it (the faces one-sided, the hull by two_sided_nodes), instead of by rim_clustering.
+  // The corner a sharp rim leaves is singular in potential flow; with wall cells of y+ 5 or less
+  // its wedges are three orders of magnitude smaller than their neighbours (docs/mesher.md).
+  double rim_radius = 0;
   // Equally spaced fins (0: none) and the polar angle (rad, from +y towards +z) of the first:
   // sectors narrow by the factor 1 - fin_clustering at each fin plane and widen between them
   // (theta = xi - c sin(fins (xi - fin_angle)) / fins, c = fin_clustering), so that the hull cells

@@ -31,6 +31,11 @@ struct MeshSettings {
 };
 
 std::vector<std::string> mesh_preset_names();  // coarse, medium, fine
+// The presets' revision: raised whenever a preset's grids change (counts, spacing, the grid
+// generators). A CFD case names its mesh by preset, so the revision is part of its content hash:
+// cached results and stored straight runs of an older grid are never taken for a newer one.
+// 2: the rims rounded by a 5 mm fillet (session 33).
+int mesh_preset_revision();
 // The preset for a vehicle (first-cell heights from y+, background extents from the hull).
 // Throws std::invalid_argument listing the presets when the name is unknown.
 MeshSettings mesh_preset(std::string_view name, const geometry::Vehicle& vehicle);
