@@ -131,9 +131,30 @@ void read_body(Table root, CaseSpec& c, const VehicleResolver& resolve_vehicle) 
   if (c.duration < c.dt) time.fail("duration", "must be at least one time step (dt)");
 }
 
+// The root [mesh] table of a CFD case: the grids' settings on top of [cfd] mesh's preset.
+void read_mesh(Table root, CaseSpec& c) {
+  auto t = root.optional_table("mesh");
+  if (!t) return;
+  if (c.plant != PlantKind::cfd) {
+    root.fail("mesh",
+              fmt::format("[mesh] applies to plant = \"cfd\", not \"{}\"", to_string(c.plant)));
+    root.ignore("mesh");
+    return;
+  }
+  if (t->has("preset")) {
+    t->fail("preset", "a CFD case names its preset in [cfd] mesh");
+    t->ignore("preset");
+  }
+  if (t->has("fin_deflections")) {
+    t->fail("fin_deflections", "the CFD plant turns the fins itself: leave them out");
+    t->ignore("fin_deflections");
+  }
+  c.cfd.mesh_settings = mesher::read_mesh_settings(*t, c.vehicle.vehicle, c.cfd.mesh);
+}
+
 void read_cfd(Table root, CaseSpec& c) {
   auto t = root.optional_table("cfd");
-  if (!t) return;
+  if (!t) return read_mesh(root, c);
   if (c.plant != PlantKind::cfd) {
     root.fail("cfd",
               fmt::format("[cfd] applies to plant = \"cfd\", not \"{}\"", to_string(c.plant)));
@@ -153,10 +174,11 @@ void read_cfd(Table root, CaseSpec& c) {
   f.tolerance = t->number_or("tolerance", 1e-6, Range::closed(1e-14, 1e-3), "");
   f.intermediate_tolerance =
       t->number_or("intermediate_tolerance", 1e-4, Range::closed(0, 0.1), "");
-  f.max_flow_speed = t->number_or("max_flow_speed", 20, Range::positive(), "m/s");
+  f.max_flow_speed = t->number_or("max_flow_speed", 20, Range::non_negative(), "m/s");
   f.fields_at = t->optional_numbers("fields_at", 1, 100, Range::open_closed(0, c.duration), "s")
                     .value_or(std::vector<double>{});
   t->finish();
+  read_mesh(root, c);
 }
 
 void read_initial(Table root, CaseSpec& c) {
@@ -291,6 +313,10 @@ nlohmann::json canonical_json(const CaseSpec& c) {
                 {"tolerance", c.cfd.tolerance},
                 {"intermediate_tolerance", c.cfd.intermediate_tolerance},
                 {"max_flow_speed_m_s", c.cfd.max_flow_speed},
+                {"mesh_settings",
+                 c.cfd.mesh_settings
+                     ? nlohmann::json::parse(mesher::mesh_settings_json(*c.cfd.mesh_settings))
+                     : nlohmann::json()},
                 {"fields_at_s", c.cfd.fields_at}};
     // The flow sees the vehicle's shape, not only its name: a vehicle file edited in place
     // must not find the old file's results or straight run.
@@ -455,6 +481,7 @@ CfdPlantSettings cfd_plant_settings(const CaseSpec& c) {
   s.turbulence_final_only = c.cfd.turbulence_final_only;
   s.intermediate_tolerance = c.cfd.intermediate_tolerance;
   s.max_flow_speed = c.cfd.max_flow_speed;
+  s.mesh_settings = c.cfd.mesh_settings;
   s.reference_speed = std::max(c.initial_speed, 0.1);
   s.added_mass = prestero_added_mass(c.vehicle.hydrodynamics);
   s.neutral_buoyancy = c.buoyancy == Buoyancy::neutral;

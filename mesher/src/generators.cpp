@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <fmt/format.h>
+
 namespace auvloop::mesher {
 
 std::vector<double> graded_nodes(double a, double b, int n, double ratio, bool two_sided) {
@@ -89,19 +91,19 @@ std::vector<double> stretched_nodes(double a, double b, double first, int n) {
 std::vector<double> two_sided_nodes(double a, double b, int n, double first, double last) {
   const double length = b - a;
   const double uniform = length / n;
-  if (n < 2 || !(length > 0) || !(first > 0) || !(last > 0) ||
-      !(first * last < uniform * uniform)) {
+  if (n < 3 || !(length > 0) || !(first > 0) || !(last > 0) || !(first < uniform) ||
+      !(last < uniform)) {
     throw std::invalid_argument(
-        "two_sided_nodes: need n >= 2, b > a and 0 < first, last with first * last < ((b - a) / "
-        "n)^2");
+        "two_sided_nodes: need n >= 3, b > a and both end cells in (0, (b - a) / n)");
   }
   // Index xi = k / n in [0, 1] maps to s in [0, 1]: u = (1 + tanh(d (xi - 1/2)) / tanh(d / 2)) / 2,
   // s = u / (A + (1 - A) u). The slopes at the ends are ds/dxi = d / (A sinh d) and A d / sinh d;
   // setting them to S0 and S1 gives A = sqrt(S1 / S0) and sinh(d) / d = 1 / sqrt(S0 S1) > 1,
   // solved for d by bisection (sinh(d) / d rises with d). The end cells differ from the slopes
-  // by O(1 / n^2) (18 % at n = 12 for strong clustering), so S0 and S1, started at the targets over
-  // the uniform size, are corrected by the ratio of target to cell until both cells match to
-  // 1e-10 (a fixed point that converges in a few dozen passes: each cell grows with its slope).
+  // over n by O(1 / n) (tens of per cent at n = 12 for strong clustering), so S0 and S1, started
+  // at the targets over the uniform size, are corrected by the ratio of target to cell until both
+  // cells match to 1e-10: a fixed point that converges in a handful of passes when both ends are
+  // finer than uniform and n >= 3 (a random sweep of 4,000 such cases converged); it is checked.
   const auto nodes = [&](double s0, double s1) {
     const double big_a = std::sqrt(s1 / s0), target = 1 / std::sqrt(s0 * s1);
     double lo = 0, hi = 1;
@@ -125,14 +127,16 @@ std::vector<double> two_sided_nodes(double a, double b, int n, double first, dou
   auto x = nodes(s0, s1);
   for (int pass = 0; pass < 200; ++pass) {
     const double c0 = x[1] - x[0], c1 = x[x.size() - 1] - x[x.size() - 2];
-    if (std::abs(c0 - first) < 1e-10 * first && std::abs(c1 - last) < 1e-10 * last) break;
+    if (std::abs(c0 - first) < 1e-10 * first && std::abs(c1 - last) < 1e-10 * last) return x;
     const double t0 = s0 * first / c0, t1 = s1 * last / c1;
-    if (!(t0 * t1 < 1)) break;  // no longer clustered: keep the last map
+    if (!(t0 * t1 < 1)) break;  // no longer clustered
     s0 = t0;
     s1 = t1;
     x = nodes(s0, s1);
   }
-  return x;
+  throw std::invalid_argument(
+      fmt::format("two_sided_nodes: no map of {} cells on [{}, {}] has end cells {} and {}", n, a,
+                  b, first, last));
 }
 
 namespace {

@@ -121,16 +121,18 @@ std::vector<double> zone_fractions(const ArcLength& arc, const HullGridSpec& s,
 
 // Arc-length nodes along the curved profile from arc length `begin` to `end` (the rims, or the
 // fillets' tangent points): rim-clustered (by rim_clustering; with fillets, two-sided to the end
-// sizes `first` and `last`), and with a stern zone a share `fin_zone_share` of them spread by the
-// zone weight instead (the nodes of the mixture of the two distributions, found by inverting it
-// on a fine table). The mixture's end cells are the rim distribution's over 1 - share where the
-// zone weight vanishes, so the rim distribution's ends are scaled down by that factor.
+// sizes `first` and `last` when both are finer than uniform, else uniform), and with a stern zone
+// a share `fin_zone_share` of them spread by the zone weight instead (the nodes of the mixture of
+// the two distributions, found by inverting it on a fine table). Where the zone weight vanishes
+// the mixture's end cells are the rim distribution's over 1 - share, so its ends are scaled down
+// by that factor; at the tail the zone's ramp reaches the rim (weight about 0.5 on the REMUS), and
+// the end cells there come out a few per cent smaller than `last` (the tests allow 25 %).
 std::vector<double> body_nodes(const ArcLength& arc, const HullGridSpec& s, double begin,
                                double end, double first = 0, double last = 0) {
   const bool zone = has_fin_zone(s) && s.fin_zone_share > 0;
   const double keep = zone ? 1 - s.fin_zone_share : 1;
   const double uniform = (end - begin) / s.body_cells;
-  auto sigma = first > 0 && keep * keep * first * last < uniform * uniform
+  auto sigma = first > 0 && s.body_cells >= 3 && keep * first < uniform && keep * last < uniform
                    ? two_sided_nodes(begin, end, s.body_cells, keep * first, keep * last)
                : first > 0 ? graded_nodes(begin, end, s.body_cells)
                            : graded_nodes(begin, end, s.body_cells, s.rim_clustering, true);
@@ -178,7 +180,8 @@ struct WallLines {
 // the centre lies R inside both, so for the nose it solves c.x = R with c = P(x) - R n(x) (P the
 // profile point at station x, n its outward unit normal), and for the tail c.x = L - R; x is
 // found by bisection (c.x rises with x wherever R is below the profile's radius of curvature, and
-// c.x - goal changes sign over the bracket [0, R] or [L - R, L] for any slope). The arc runs
+// c.x - goal changes sign over the bracket [0, R] or [L - R, L] wherever the profile rises from
+// the nose and falls to the tail, as every Myring profile does). The arc runs
 // between the polar angles `from` (the end face's normal: pi at the nose, 0 at the tail) and
 // `to` (the hull's normal at the tangent station `station`).
 struct Fillet {
@@ -238,7 +241,10 @@ WallLines filleted_wall_lines(const geometry::MyringProfile& p, const HullGridSp
     for (int k = 0; k <= s.rim_fan; ++k) {
       const double phi = f.from + (f.to - f.from) * k / s.rim_fan;
       const Vec2 dir(std::cos(phi), std::sin(phi));
-      add(f.centre + radius * dir, dir);
+      Vec2 q = f.centre + radius * dir;
+      if (phi == std::numbers::pi) q.x() = 0;  // on the end faces exactly (c.x -/+ R rounds)
+      if (phi == 0) q.x() = p.length();
+      add(q, dir);
     }
   };
   const auto reverse = [](Fillet f) {

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "auvloop/geometry/myring.hpp"
 
@@ -200,6 +201,62 @@ MeshSettings read_mesh_settings(input::Table mesh, const geometry::Vehicle& v,
   }
   mesh.finish();
   return s;
+}
+
+std::string mesh_settings_json(const MeshSettings& s) {
+  const auto& h = s.hull;
+  const auto& f = s.fin;
+  const auto& b = s.background;
+  const nlohmann::json j = {{"preset", s.preset},
+                            {"revision", mesh_preset_revision()},
+                            {"design_speed", s.design_speed},
+                            {"kinematic_viscosity", s.kinematic_viscosity},
+                            {"hull_yplus", s.hull_yplus},
+                            {"fin_yplus", s.fin_yplus},
+                            {"hull",
+                             {{"nose_face_cells", h.nose_face_cells},
+                              {"body_cells", h.body_cells},
+                              {"tail_face_cells", h.tail_face_cells},
+                              {"circumferential", h.circumferential},
+                              {"normal_cells", h.normal_cells},
+                              {"first_cell", h.first_cell},
+                              {"growth", h.growth},
+                              {"extent", h.extent},
+                              {"rim_clustering", h.rim_clustering},
+                              {"rim_fan", h.rim_fan},
+                              {"rim_radius", h.rim_radius},
+                              {"fins", h.fins},
+                              {"fin_angle", h.fin_angle},
+                              {"fin_clustering", h.fin_clustering},
+                              {"fin_zone_begin", h.fin_zone_begin},
+                              {"fin_zone_end", h.fin_zone_end},
+                              {"fin_zone_share", h.fin_zone_share},
+                              {"fin_zone_ramp", h.fin_zone_ramp}}},
+                            {"fin",
+                             {{"chordwise_cells", f.chordwise_cells},
+                              {"normal_cells", f.normal_cells},
+                              {"gap_cells", f.gap_cells},
+                              {"span_cells", f.span_cells},
+                              {"cap_cells", f.cap_cells},
+                              {"trailing_edge_fan", f.trailing_edge_fan},
+                              {"first_cell", f.first_cell},
+                              {"growth", f.growth},
+                              {"extent", f.extent},
+                              {"cap_height", f.cap_height},
+                              {"root_depth", f.root_depth}}},
+                            {"background",
+                             {{"nose_x", b.nose_x},
+                              {"length", b.length},
+                              {"radius", b.radius},
+                              {"ahead", b.ahead},
+                              {"behind", b.behind},
+                              {"side", b.side},
+                              {"spacing", b.spacing},
+                              {"margin", b.margin},
+                              {"wake", b.wake},
+                              {"growth", b.growth}}},
+                            {"fin_deflections", s.fin_deflections}};
+  return j.dump();  // nlohmann::json objects keep their keys sorted
 }
 
 void check_mesh_settings(const MeshSettings& s, const geometry::Vehicle& v) {

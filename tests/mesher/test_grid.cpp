@@ -81,8 +81,9 @@ TEST(Grid, TwoSidedNodesHitTheirEndSizes) {
     for (std::size_t i = rising + 1; i + 1 < x.size(); ++i)
       EXPECT_LT(x[i + 1] - x[i], x[i] - x[i - 1]) << "not a single peak at node " << i;
   }
-  EXPECT_THROW((void)two_sided_nodes(0, 1, 10, 0.1, 0.2), std::invalid_argument);  // not finer
-  EXPECT_THROW((void)two_sided_nodes(0, 1, 1, 0.01, 0.01), std::invalid_argument);
+  EXPECT_THROW((void)two_sided_nodes(0, 1, 10, 0.1, 0.2), std::invalid_argument);   // not finer
+  EXPECT_THROW((void)two_sided_nodes(0, 1, 2, 0.01, 0.01), std::invalid_argument);  // 2 cells
+  EXPECT_THROW((void)two_sided_nodes(0, 1, 4, 0.9, 0.05), std::invalid_argument);   // one coarse
   EXPECT_THROW((void)two_sided_nodes(1, 0, 10, 0.01, 0.01), std::invalid_argument);
 }
 

@@ -380,24 +380,38 @@ TEST(HullGrid, FilletedRimsHaveNoWedgeCells) {
   EXPECT_EQ(on_profile, s.body_cells + 1);
   // Arc points are R from a common centre (the nose arc's first s.rim_fan + 1 points after the
   // face's; centre at x = R, tangent to the face).
-  const auto arc_check = [&](std::size_t first, double cx) {
+  // `slope`: the profile's dr/dx in the meridian's frame (mirrored at the tail).
+  const auto arc_check = [&](std::size_t first, double cx, const auto& slope) {
     const double cy = m[first].y();  // the face tangent point has the centre's radius
     for (int k = 0; k <= s.rim_fan; ++k) {
       const auto& q = m[first + static_cast<std::size_t>(k)];
       EXPECT_NEAR(std::hypot(q.x() - cx, q.y() - cy), s.rim_radius, 1e-9) << k;
     }
+    // Tangent to the hull: at the arc's last point its radius is normal to the profile, and the
+    // wall turns smoothly there (the chords either side within 5 deg of each other: the arc's own
+    // cells turn by 10 deg or more, so a kink of the size of the corner would show).
+    const auto& t = m[first + static_cast<std::size_t>(s.rim_fan)];
+    const Eigen::Vector2d along(1, slope(t.x()));
+    EXPECT_NEAR((t - Eigen::Vector2d(cx, cy)).dot(along.normalized()), 0, 1e-9 * s.rim_radius);
+    const auto dir = [&](std::size_t i) { return (m[i + 1] - m[i]).normalized().eval(); };
+    const std::size_t last = first + static_cast<std::size_t>(s.rim_fan);
+    const double turn = std::acos(std::clamp(dir(last - 1).dot(dir(last)), -1.0, 1.0));
+    const double arc_turn = std::acos(std::clamp(dir(first).dot(dir(first + 1)), -1.0, 1.0));
+    EXPECT_LT(turn, 0.75 * arc_turn) << "a kink where the arc meets the hull";
     // Segment lengths either side of the arc's ends within 25 % of the arc's chords.
     const auto seg = [&](std::size_t i) { return (m[i + 1] - m[i]).norm(); };
     const double arc_cell = seg(first);
     EXPECT_NEAR(seg(first - 1) / arc_cell, 1, 0.25);
     EXPECT_NEAR(seg(first + static_cast<std::size_t>(s.rim_fan)) / arc_cell, 1, 0.25);
   };
-  arc_check(static_cast<std::size_t>(s.nose_face_cells), s.rim_radius);
+  arc_check(static_cast<std::size_t>(s.nose_face_cells), s.rim_radius,
+            [&](double x) { return profile.slope(x); });
   // The tail: mirrored (the meridian runs down the tail face at its end).
   std::vector<Eigen::Vector2d> mirrored(m.rbegin(), m.rend());
   for (auto& q : mirrored) q.x() = L - q.x();
   std::swap(m, mirrored);
-  arc_check(static_cast<std::size_t>(s.tail_face_cells), s.rim_radius);
+  arc_check(static_cast<std::size_t>(s.tail_face_cells), s.rim_radius,
+            [&](double x) { return -profile.slope(L - x); });
 
   const double filleted = largest_wall_neighbour_volume_ratio(g, geo);
   HullGridSpec sharp = s;

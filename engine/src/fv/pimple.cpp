@@ -328,7 +328,8 @@ StepReport Pimple::step() {
     predictor_force_ = good_.predictor_force;
     if (turbulence_) turbulence_->restore();
     throw DivergenceError(
-        fmt::format("step {} (t = {:.6g} s) diverged: {}; the fields of t = {:.6g} s are kept{}",
+        fmt::format("the flow's step {} (flow time {:.6g} s) diverged: {}; the fields of flow "
+                    "time {:.6g} s are kept{}",
                     r.step, r.time, e.what(), time_, write_last_good()));
   }
   time_ = r.time;

@@ -45,6 +45,8 @@ void check(const CfdPlantSettings& s) {
   if (s.sense != 1 && s.sense != -1)
     bad(fmt::format("the propeller's sense must be +1 or -1, got {}", s.sense));
   if (!(s.runaway_speed > 0)) bad("runaway_speed must be positive");
+  if (s.mesh_settings && !s.mesh_settings->fin_deflections.empty())
+    bad("the mesh settings' fin_deflections must be empty: the plant turns the fins");
   if (!(s.max_flow_speed >= 0) || !(s.max_courant >= 0))
     bad("the flow's guards max_flow_speed and max_courant must be at least 0 (0: none)");
   if (s.pressure_correctors < 1)
@@ -74,8 +76,9 @@ CfdPlant::CfdPlant(const geometry::Vehicle& vehicle, CfdPlantSettings settings)
   m.rho = vehicle.mass.water_density;
   if (!(m.rho > 0))
     throw std::invalid_argument("CFD plant: the vehicle file gives no water density");
-  m.sys = std::make_unique<fv::VehicleOverset>(
-      mesher::build_grid_system(vehicle, mesher::mesh_preset(s.mesh, vehicle)), vehicle);
+  const auto grids = s.mesh_settings ? *s.mesh_settings : mesher::mesh_preset(s.mesh, vehicle);
+  m.grids = mesher::mesh_settings_json(grids);
+  m.sys = std::make_unique<fv::VehicleOverset>(mesher::build_grid_system(vehicle, grids), vehicle);
   const auto& mesh = m.sys->mesh();
   fv::PimpleSettings ps;
   ps.nu = s.nu;
@@ -217,7 +220,7 @@ constexpr std::string_view kPlantTag = "cfd plant";
 void CfdPlant::save(StateWriter& out) const {
   const auto& m = *impl_;
   out.tag(kPlantTag);
-  out.put(std::string_view(m.settings.mesh));
+  out.put(std::string_view(m.grids));
   const auto& h = dfbi_.history();
   put(out, h.state);
   out.put(h.nu_old);
@@ -234,8 +237,8 @@ void CfdPlant::save(StateWriter& out) const {
 void CfdPlant::load(StateReader& in) {
   auto& m = *impl_;
   in.expect_tag(kPlantTag);
-  if (const auto mesh = in.get_string(); mesh != m.settings.mesh)
-    in.fail(fmt::format("written on the {} mesh, this plant's is {}", mesh, m.settings.mesh));
+  if (const auto grids = in.get_string(); grids != m.grids)
+    in.fail(fmt::format("written on other grids ({}), this plant's are {}", grids, m.grids));
   DfbiHistory h;
   h.state = get_body_state(in);
   in.get(h.nu_old);

@@ -19,6 +19,7 @@ namespace auvloop::engine {
 struct CfdPlant::Impl {
   geometry::Vehicle vehicle;
   CfdPlantSettings settings;
+  std::string grids;  // mesher::mesh_settings_json of the grids built (checkpoints carry it)
   double rho = 0;
   std::unique_ptr<fv::VehicleOverset> sys;
   std::unique_ptr<fv::Pimple> flow;

@@ -6,6 +6,7 @@
 #include <complex>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <variant>
 
@@ -14,6 +15,7 @@
 #include "auvloop/engine/closed_loop.hpp"
 #include "auvloop/engine/prestero.hpp"
 #include "auvloop/engine/vehicle_model.hpp"
+#include "auvloop/mesher/mesh_settings.hpp"
 
 namespace auvloop::engine {
 
@@ -28,6 +30,9 @@ PlantKind plant_kind_from_string(const std::string& s);
 // The [cfd] table: the CFD plant's settings (docs/case-file.md; engine/cfd_plant.hpp).
 struct CfdSpec {
   std::string mesh = "coarse";  // coarse, medium, fine
+  // The case file's [mesh] table on top of that preset (docs/mesher.md's keys; no preset and no
+  // fin_deflections there), when it has one.
+  std::optional<mesher::MeshSettings> mesh_settings;
   int outer_iterations = 5;
   bool sst = true;          // turbulence = "sst" | "laminar"
   bool horizontal = false;  // dof = "horizontal" (surge, sway, yaw) | "6dof"
@@ -42,7 +47,7 @@ struct CfdSpec {
   double tolerance = 1e-6;
   double intermediate_tolerance = 1e-4;
   // Divergence guard: water faster than this (m/s) anywhere in the flow stops the run as diverged
-  // (CfdPlantSettings::max_flow_speed).
+  // (CfdPlantSettings::max_flow_speed; 0: none).
   double max_flow_speed = 20;
   // Manoeuvre times (s) at which the flow is kept for a person: ParaView fields and the
   // pictures of the stern plane and the upper rudder (CaseRunOptions::fields; docs/results.md)

@@ -38,13 +38,18 @@
 #include "auvloop/engine/plant.hpp"
 #include "auvloop/engine/propeller.hpp"
 #include "auvloop/geometry/vehicle.hpp"
+#include "auvloop/mesher/mesh_settings.hpp"
 
 namespace auvloop::engine {
 
 struct CfdPlantSettings {
   std::string mesh = "coarse";  // mesher preset: coarse, medium, fine
-  int outer_iterations = 5;     // the paper's
-  bool sst = true;              // SST k-omega; else laminar
+  // The grids' settings when they are not the preset's own (a case file's [mesh] table on top of
+  // the preset; mesher::read_mesh_settings). Fin deflections must be left empty: the plant turns
+  // the fins.
+  std::optional<mesher::MeshSettings> mesh_settings;
+  int outer_iterations = 5;  // the paper's
+  bool sst = true;           // SST k-omega; else laminar
   // Water: kinematic viscosity (m^2/s; sea water at 15 C) and the free stream's turbulence for
   // SST (intensity of `reference_speed`, eddy-viscosity ratio).
   double nu = 1.19e-6;

@@ -40,8 +40,8 @@ std::vector<double> stretched_nodes(double a, double b, double first, int n);
 // n cells from a to b clustered towards both ends, the end cells `first` (at a) and `last` (at b):
 // Vinokur's two-sided tanh stretching (J. Comput. Phys. 50, 1983), whose end slopes are corrected
 // until the end cells match (to 1e-10 relative); neighbouring sizes change smoothly. Throws
-// std::invalid_argument unless n >= 2, b > a and first, last are positive with first * last < ((b -
-// a) / n)^2 (the ends finer than uniform on average: there is nothing to cluster otherwise).
+// std::invalid_argument unless n >= 3, b > a and both end cells lie in (0, (b - a) / n) (finer than
+// uniform: otherwise there is nothing to cluster), or if the correction does not converge.
 std::vector<double> two_sided_nodes(double a, double b, int n, double first, double last);
 
 // Nodes from -half to half through the uniform core [lo, hi] (cells of about h), growing by at

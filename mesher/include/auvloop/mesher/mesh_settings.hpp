@@ -53,6 +53,11 @@ double flat_plate_yplus(double height, double speed, double nu, double length);
 MeshSettings read_mesh_settings(input::Table mesh, const geometry::Vehicle& vehicle,
                                 std::string_view preset = {});
 
+// Every setting that shapes the grids (speed, viscosity, y+, the hull's, fins' and background's
+// specs, the fin deflections), as compact JSON with sorted keys: equal settings give equal text.
+// For content hashes (a CFD case's [mesh] table) and checkpoints.
+std::string mesh_settings_json(const MeshSettings& s);
+
 // Throws std::invalid_argument naming the setting (negative counts, a first cell taller than the
 // hull radius, a deflection beyond the fin set's max_deflection, ...).
 void check_mesh_settings(const MeshSettings& s, const geometry::Vehicle& vehicle);
