@@ -15,6 +15,7 @@
 #include "auvloop/geometry/input.hpp"
 #include "auvloop/results/run_directory.hpp"
 #include "auvloop/scheduler/worker.hpp"
+#include "executions_log.hpp"
 #include "scheduler_runtime.hpp"
 
 namespace auvloop::scheduler {
@@ -193,8 +194,12 @@ bool Scheduler::complete_from_cache(JobRecord& job) {
   }
   if (hit.state != results::ResultCache::State::valid) return false;
   const auto& m = hit.run->manifest;
-  // Its own result only when it had run before (a job queued again after a daemon restart).
+  // Its own result only when it had run before (a job queued again after a daemon restart). A
+  // worker killed between storing it and logging its execution left no line: record it.
   job.cache_hit = job.state != "running" && job.attempts == 0;
+  const auto log = config_.state_dir / "executions.log";
+  if (!job.cache_hit && !execution_logged(log, job.key))
+    append_execution(log, job.key, job.name, m.value("wall_time_s", 0.0));
   job.state = m.value("failure", json()).is_string() ? "failed" : "succeeded";
   job.failure = job.state == "failed" ? m["failure"].get<std::string>() : "";
   job.finished_ms = now_ms();

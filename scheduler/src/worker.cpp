@@ -16,6 +16,7 @@
 #include "auvloop/results/cache.hpp"
 #include "auvloop/results/manoeuvre_metrics.hpp"
 #include "auvloop/scheduler/bundle.hpp"
+#include "executions_log.hpp"
 
 namespace auvloop::scheduler {
 namespace {
@@ -52,14 +53,6 @@ class ProgressChannel {
   Clock::time_point last_{};
 };
 
-void append_execution(const std::filesystem::path& log, const std::string& line) {
-  if (log.empty()) return;
-  const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0600);
-  if (fd < 0) return;
-  // One write of a short line with O_APPEND: lines from concurrent workers never interleave.
-  [[maybe_unused]] const auto n = write(fd, line.data(), line.size());
-  close(fd);
-}
 }  // namespace
 
 engine::CaseSpec case_from_payload(const json& payload) {
@@ -161,7 +154,7 @@ int run_worker(const WorkerArgs& args) {
     std::filesystem::remove(options.checkpoint, ignored);
     if (!options.fields.empty()) std::filesystem::remove_all(options.fields, ignored);
   }
-  append_execution(args.executions_log, fmt::format("{} {} {:.6f}\n", key, c.name, wall));
+  append_execution(args.executions_log, key, c.name, wall);
   fmt::print("worker: {} in {:.3f} s{}\n", run.loop.failure ? "failed" : "done", wall,
              run.loop.failure ? ": " + *run.loop.failure : "");
   return 0;
