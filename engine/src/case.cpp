@@ -301,7 +301,6 @@ nlohmann::json canonical_json(const CaseSpec& c) {
   if (c.plant == PlantKind::cfd) {
     const auto& w = c.vehicle.vehicle.propeller.open_water;
     j["cfd"] = {{"mesh", c.cfd.mesh},
-                {"mesh_revision", mesher::mesh_preset_revision()},
                 {"outer_iterations", c.cfd.outer_iterations},
                 {"turbulence", c.cfd.sst ? "sst" : "laminar"},
                 {"dof", c.cfd.horizontal ? "horizontal" : "6dof"},
@@ -318,6 +317,8 @@ nlohmann::json canonical_json(const CaseSpec& c) {
                      ? nlohmann::json::parse(mesher::mesh_settings_json(*c.cfd.mesh_settings))
                      : nlohmann::json()},
                 {"fields_at_s", c.cfd.fields_at}};
+    // The grids' revision: mesh_settings_json carries it when a [mesh] table is given (one place).
+    if (!c.cfd.mesh_settings) j["cfd"]["mesh_revision"] = mesher::mesh_preset_revision();
     // The flow sees the vehicle's shape, not only its name: a vehicle file edited in place
     // must not find the old file's results or straight run.
     const auto& v = c.vehicle.vehicle;

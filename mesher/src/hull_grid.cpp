@@ -220,6 +220,24 @@ std::vector<double> face_distances(double face, int n, double h) {
   return stretched_nodes(0, face, h, n);
 }
 
+// The outward unit normal of the wall segment from w[a] to w[b] (the body lies on the right of the
+// traversal, nose to tail), and at an inner wall point the average of its two segments' normals.
+Vec2 segment_normal(const std::vector<Vec2>& w, std::size_t a, std::size_t b) {
+  const Vec2 t = (w[b] - w[a]).normalized();
+  return Vec2(-t.y(), t.x());
+}
+Vec2 vertex_normal(const std::vector<Vec2>& w, std::size_t i) {
+  return (segment_normal(w, i - 1, i) + segment_normal(w, i, i + 1)).normalized();
+}
+// The wall's first and last points lie on the axis; their lines run along it, ahead of the nose
+// and behind the tail.
+bool on_axis(const std::vector<Vec2>& w, std::size_t i) {
+  return i == 0 || i + 1 == w.size();
+}
+Vec2 axis_direction(std::size_t i) {
+  return Vec2(i == 0 ? -1.0 : 1.0, 0.0);
+}
+
 // Wall lines round filleted rims: the nose face from the axis, the nose arc, the curved hull
 // between the tangent stations, the tail arc and the tail face to the axis. The arcs' lines are
 // their radii (the exact normals); every other line is the average of its two segments' normals,
@@ -270,17 +288,9 @@ WallLines filleted_wall_lines(const geometry::MyringProfile& p, const HullGridSp
   for (std::size_t i = 0; i < w.size(); ++i) {
     lines.point.push_back(w[i]);
     lines.owner.push_back(lines.size() - 1);
-    if (i == 0 || i + 1 == w.size()) {  // the axis ahead of the nose and behind the tail
-      lines.dir.emplace_back(i == 0 ? -1.0 : 1.0, 0.0);
-    } else if (exact[i] != Vec2::Zero()) {
-      lines.dir.push_back(exact[i]);
-    } else {
-      const auto normal = [&](std::size_t a, std::size_t b) {
-        const Vec2 t = (w[b] - w[a]).normalized();
-        return Vec2(-t.y(), t.x());
-      };
-      lines.dir.push_back((normal(i - 1, i) + normal(i, i + 1)).normalized());
-    }
+    lines.dir.push_back(on_axis(w, i)              ? axis_direction(i)
+                        : exact[i] != Vec2::Zero() ? exact[i]
+                                                   : vertex_normal(w, i));
   }
   return lines;
 }
@@ -304,28 +314,23 @@ WallLines wall_lines(const geometry::MyringProfile& p, const HullGridSpec& s) {
   rims.push_back(w.size());
   for (auto it = tail.rbegin(); it != tail.rend(); ++it) w.emplace_back(p.length(), *it);
 
-  const auto normal = [&](std::size_t a, std::size_t b) {
-    const Vec2 t = (w[b] - w[a]).normalized();
-    return Vec2(-t.y(), t.x());  // outward: the body lies on the right of the traversal
-  };
   WallLines lines;
   for (std::size_t i = 0; i < w.size(); ++i) {
     const int here = lines.size();
-    if (i == 0 || i + 1 == w.size()) {  // the axis ahead of the nose and behind the tail
+    const bool rim = i == rims[0] || i == rims[1];
+    if (!rim) {
       lines.point.push_back(w[i]);
-      lines.dir.emplace_back(i == 0 ? -1.0 : 1.0, 0.0);
+      lines.dir.push_back(on_axis(w, i) ? axis_direction(i) : vertex_normal(w, i));
       lines.owner.push_back(here);
       continue;
     }
-    const Vec2 before = normal(i - 1, i), after = normal(i, i + 1);
-    const bool rim = i == rims[0] || i == rims[1];
-    const int count = rim ? s.rim_fan + 1 : 1;
+    // A sharp rim's fan: its lines turn from the one segment's normal to the other's.
+    const Vec2 before = segment_normal(w, i - 1, i), after = segment_normal(w, i, i + 1);
     const double a = std::atan2(before.y(), before.x()), b = std::atan2(after.y(), after.x());
-    for (int t = 0; t < count; ++t) {
-      const double angle = a + (b - a) * t / std::max(1, count - 1);
+    for (int t = 0; t <= s.rim_fan; ++t) {
+      const double angle = a + (b - a) * t / s.rim_fan;
       lines.point.push_back(w[i]);
-      lines.dir.push_back(rim ? Vec2(std::cos(angle), std::sin(angle))
-                              : Vec2((before + after).normalized()));
+      lines.dir.emplace_back(std::cos(angle), std::sin(angle));
       lines.owner.push_back(here);
     }
   }

@@ -4,8 +4,9 @@
 //
 // Invariant: every computed case has exactly one line. A worker appends its line after its
 // result is stored; a worker killed between the two (a daemon's SIGKILL takes its workers) leaves
-// a stored result without a line, so the daemon, completing a job that had run from that stored
-// result, records the line on the dead worker's behalf when the key has none.
+// a stored result without a line, so the daemon, completing a job it queued again at its restart
+// from that stored result, records the line on the dead worker's behalf when the key has none
+// (only such jobs are checked: the log is read whole).
 #pragma once
 
 #include <filesystem>

@@ -194,11 +194,14 @@ bool Scheduler::complete_from_cache(JobRecord& job) {
   }
   if (hit.state != results::ResultCache::State::valid) return false;
   const auto& m = hit.run->manifest;
-  // Its own result only when it had run before (a job queued again after a daemon restart). A
-  // worker killed between storing it and logging its execution left no line: record it.
+  // Its own result only when it had run before. A job queued again after a daemon restart
+  // (queued, attempts > 0) may have a worker killed between storing its result and logging its
+  // execution: only then is the log read (it grows for the daemon's life), and a missing line
+  // recorded. A worker that ended on its own (running) has logged.
   job.cache_hit = job.state != "running" && job.attempts == 0;
+  const bool requeued_after_restart = job.state != "running" && job.attempts > 0;
   const auto log = config_.state_dir / "executions.log";
-  if (!job.cache_hit && !execution_logged(log, job.key))
+  if (requeued_after_restart && !execution_logged(log, job.key))
     append_execution(log, job.key, job.name, m.value("wall_time_s", 0.0));
   job.state = m.value("failure", json()).is_string() ? "failed" : "succeeded";
   job.failure = job.state == "failed" ? m["failure"].get<std::string>() : "";
