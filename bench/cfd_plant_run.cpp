@@ -14,6 +14,7 @@
 //      shear; N); a summary line every --every steps with the ETA.
 //   --start-steps N --start-dt S: N steps of S first (an impulsive start's spike at the nose rim
 //   needs a short step; then --dt).
+//   --mesh-file F: F's [mesh] table (docs/mesher.md) on top of --mesh's preset (a grid study).
 //   cfd_plant_run [--mesh coarse] [--dt 0.01] [--time 2] [--speed 1.54] [--rpm 1500]
 //                 [--free none] [--pitch-ratio 0.5] [--j-scale 1] [--threads 2] [--csv F]
 #include <chrono>
@@ -27,6 +28,8 @@
 
 #include "auvloop/engine/cfd_plant.hpp"
 #include "auvloop/engine/vehicle_model.hpp"
+#include "auvloop/geometry/input.hpp"
+#include "auvloop/mesher/mesh_settings.hpp"
 
 using namespace auvloop;
 
@@ -75,6 +78,9 @@ int main(int argc, char** argv) {
   bool no_fins = false, no_propeller = false;
   app.add_flag("--no-fins", no_fins, "the hull alone (remus-resistance's bare hull)");
   app.add_flag("--no-propeller", no_propeller, "no disk at all (towed resistance; rpm 0)");
+  std::string mesh_file;
+  app.add_option("--mesh-file", mesh_file, "a TOML file whose [mesh] table goes on top of --mesh")
+      ->check(CLI::ExistingFile);
   CLI11_PARSE(app, argc, argv);
   const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                                   static_cast<std::size_t>(threads));
@@ -83,6 +89,16 @@ int main(int argc, char** argv) {
   if (no_fins) vehicle.fin_set.fins.clear();
   engine::CfdPlantSettings s;  // 1.
   s.mesh = mesh;
+  if (!mesh_file.empty()) {
+    try {
+      auto doc = input::Document::load(mesh_file);
+      s.mesh_settings = mesher::read_mesh_settings(doc.root().table("mesh"), vehicle, mesh);
+      doc.check();
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "%s\n", e.what());
+      return 2;
+    }
+  }
   s.outer_iterations = outer;
   s.nu = nu;
   s.intermediate_tolerance = intermediate_tolerance;

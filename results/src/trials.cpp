@@ -22,6 +22,7 @@
 
 #include "auvloop/engine/case.hpp"
 #include "auvloop/results/manoeuvre_metrics.hpp"
+#include "auvloop/results/metrics.hpp"
 
 namespace auvloop::results {
 
@@ -91,6 +92,33 @@ rudder = 13.6
 limit = 13.6
 )";
 
+// The paper's heading step (section 4.3, Table 4), as examples/cfd-heading-step.toml runs it.
+constexpr const char* kHeadingStep = R"(name = "remus-heading-step"
+vehicle = "preset:remus100"
+plant = "cfd"
+[cfd]
+dof = "horizontal"
+[time]
+dt = 0.01
+duration = 30
+[initial]
+speed = 1.54
+rpm = 1500
+[manoeuvre]
+type = "heading-step"
+target_heading = 90
+[controller]
+kp = 1.5
+ki = 0.6
+kd = 1.0
+[actuators.rudder]
+time_constant = 0.1
+limit = 30
+rate_limit = 30
+[actuators.propeller]
+time_constant = 0.5
+)";
+
 struct Trial {
   const char* name;
   const char* text;
@@ -130,6 +158,108 @@ double run(const engine::CaseSpec& c, const std::string& metric, Result& res) {
                                   metric, value, seconds,
                                   r.loop.failure ? "; failed: " + *r.loop.failure : ""));
   return r.loop.failure ? std::nan("") : value;
+}
+
+// Runs `c` and returns its indices (null when the run failed; the reason goes to the notes) and
+// its series' heading change at `at` s (deg).
+struct Indices {
+  nlohmann::json metrics;
+  double heading_change = std::nan("");
+};
+Indices run_indices(const engine::CaseSpec& c, double at, Result& res) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto r = engine::run_case(c);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  Indices out;
+  auto& s = r.loop.series;
+  const auto& t = s["t"].values;
+  const std::vector<double> psi = unwrap_degrees(s["psi_true"].values);  // deg
+  for (std::size_t i = 0; i + 1 < t.size() && !r.loop.failure; ++i) {
+    if (t[i + 1] < at - 1e-9) continue;
+    const double w = (at - t[i]) / (t[i + 1] - t[i]);
+    out.heading_change = psi[i] + w * (psi[i + 1] - psi[i]) - psi.front();
+    break;
+  }
+  if (!r.loop.failure) out.metrics = manoeuvre_metrics(c, s);
+  const auto& m = out.metrics;
+  res.notes.push_back(fmt::format(
+      "{} plant{}, dt {:g} s ({:.0f} s): {}", engine::to_string(c.plant),
+      c.plant == engine::PlantKind::cfd ? ", " + c.cfd.mesh : "", c.dt, seconds,
+      r.loop.failure ? "failed: " + *r.loop.failure
+      : m.is_null()
+          ? std::string("no indices")
+          : fmt::format("rise time {:.3f} s, peak {:.2f} deg at {:.2f} s, overshoot {:.2f} %, "
+                        "settling {}, ITAE {:.1f} deg s^2; heading change at {:g} s {:.2f} deg",
+                        figure(m, "rise_time_s"), figure(m, "peak_deg"), figure(m, "peak_time_s"),
+                        figure(m, "overshoot_percent"),
+                        m["settled"].get<bool>()
+                            ? fmt::format("{:.2f} s", figure(m, "settling_time_s"))
+                            : std::string("not settled"),
+                        figure(m, "itae_deg_s2"), at, out.heading_change)));
+  return out;
+}
+
+// remus-heading-step (issue 18 items 8 and 9). Quick (CI): coarse, 0.2 s straight, the first
+// second: the heading change at 1 s over the derivative plant's, within a factor of four either
+// way (the response's sign and size). Not the trials' factor of two: the paper's own CFD loop
+// rises 2.69 times as fast as its linear model here (1.312 s against 3.528 s), and the rudder,
+// rate-limited to 30 deg/s, sweeps to 30 deg in that second, far beyond the trials' 4 deg. Full:
+// the derivative plant, then the CFD plant on coarse and medium at 10 ms and on coarse at 5 and 20
+// ms: every run's indices beside the paper's Table 4 (CFD in the loop: rise 1.312 s, peak 110.86
+// deg, overshoot 23.17 %, ITAE 12,337.82; linear model: 3.528 s, 102.77 deg, 14.18 %, 2,733.55),
+// and the grid and time-step study's criteria (the issue's acceptance): ITAE and overshoot within 5
+// % between coarse and medium and within 3 % between 10 and 5 ms.
+Result run_heading_step(bool quick) {
+  Result res{"remus-heading-step", {}, {}};
+  engine::CaseSpec c = engine::parse_case(kHeadingStep, res.name, std::filesystem::path{});
+  auto derivative = c;
+  derivative.plant = engine::PlantKind::derivative;
+  if (quick) {
+    c.cfd.spin_up = 0.2;
+    c.duration = derivative.duration = 1;
+    const double cfd = run_indices(c, 1, res).heading_change;
+    const double model = run_indices(derivative, 1, res).heading_change;
+    const double ratio = cfd / model;
+    Row row{"heading change at 1 s (deg), CFD / derivative",
+            ratio,
+            1.0,
+            std::abs(std::log2(ratio)),
+            2.0,
+            false};
+    row.pass = row.error <= row.tolerance;  // NaN fails
+    res.rows.push_back(row);
+    return res;
+  }
+  run_indices(derivative, c.duration, res);
+  struct Variant {
+    const char* mesh;
+    double dt;
+  };
+  std::vector<nlohmann::json> m;
+  for (const Variant v : {Variant{"coarse", 0.01}, Variant{"medium", 0.01},
+                          Variant{"coarse", 0.005}, Variant{"coarse", 0.02}}) {
+    c.cfd.mesh = v.mesh;
+    c.dt = v.dt;
+    m.push_back(run_indices(c, c.duration, res).metrics);
+  }
+  res.notes.push_back(
+      "the paper's Table 4: CFD in the loop rise 1.312 s, peak 110.86 deg, overshoot 23.17 %, "
+      "not settled, ITAE 12,337.82; linear model 3.528 s, 102.77 deg, 14.18 %, settled at "
+      "12.688 s, ITAE 2,733.55");
+  const auto compare = [&](const nlohmann::json& a, const nlohmann::json& b, const char* what,
+                           double tolerance) {
+    for (const char* index : {"itae_deg_s2", "overshoot_percent"}) {
+      const double x = a.is_null() ? std::nan("") : figure(a, index);
+      const double y = b.is_null() ? std::nan("") : figure(b, index);
+      res.rows.push_back(engine::validation::Row{fmt::format("{}, {}", index, what), x, y,
+                                                 std::abs(x / y - 1), tolerance,
+                                                 std::abs(x / y - 1) <= tolerance});
+    }
+  };
+  compare(m[0], m[1], "coarse / medium at 10 ms", 0.05);
+  compare(m[0], m[2], "10 ms / 5 ms on coarse", 0.03);
+  return res;
 }
 
 Result run_trial(const Trial& t, bool quick) {
@@ -199,6 +329,11 @@ std::vector<Case> trial_cases() {
                                t.what, t.sea, t.paper),
                    [&t](bool quick) { return run_trial(t, quick); }});
   }
+  all.push_back({"remus-heading-step",
+                 "the paper's PID heading step 0 -> 90 deg on the CFD plant: its indices beside "
+                 "the paper's Table 4 and the derivative plant's, and the grid (coarse, medium) "
+                 "and time-step (20, 10, 5 ms) study",
+                 run_heading_step});
   return all;
 }
 

@@ -106,6 +106,11 @@ TEST(FV_SUITE, ActuatorDisk) {
 TEST(FV_SUITE, RemusResistance) {
   run("remus-resistance");
 }
+// Free in surge at 1500 rpm with the calibrated curve (quick: coarse, 0.1 s free after 0.12 s
+// towed; full: coarse and medium, 4 s free after 2 s towed, and the towed bare drag for t).
+TEST(FV_SUITE, RemusSelfPropulsion) {
+  run("remus-self-propulsion");
+}
 TEST(FV_SUITE, SchaeferTurek2d2Shedding) {
   run("schaefer-turek-2d2");
 }

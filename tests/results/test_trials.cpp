@@ -45,3 +45,8 @@ TEST(TRIAL_SUITE, PitchTrial) {
 TEST(TRIAL_SUITE, TurningCircle) {
   run("remus-turning-circle");
 }
+// The paper's heading step (quick: its first second against the derivative plant; full: the
+// grid and time-step study, coarse and medium at 10 ms, coarse at 5 and 20 ms: about 4 h).
+TEST(TRIAL_SUITE, HeadingStep) {
+  run("remus-heading-step");
+}

@@ -799,6 +799,10 @@ const std::vector<Case>& cases() {
        "the REMUS 100 towed at 1.54 m/s without its propeller, hull alone and hull + fins, "
        "coarse, medium and fine: the drag against ITTC-57 with form factors, and its GCI",
        run_remus_resistance},
+      {"remus-self-propulsion",
+       "the REMUS 100 free in surge at 1500 rpm with its calibrated body-force propeller, coarse "
+       "and medium: speed, J, wake fraction, thrust deduction, thrust and torque",
+       run_remus_self_propulsion},
       {"flat-plate-sst",
        "NASA TMR zero-pressure-gradient flat plate, SST k-omega: Cf(0.97) and CD against CFL3D",
        run_flat_plate_sst},

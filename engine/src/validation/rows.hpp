@@ -25,6 +25,7 @@ inline Row relative_to(std::string quantity, double value, double reference, dou
   return row;
 }
 
-Result run_remus_resistance(bool quick);  // remus_cases.cpp
+Result run_remus_resistance(bool quick);       // remus_cases.cpp
+Result run_remus_self_propulsion(bool quick);  // remus_cases.cpp
 
 }  // namespace auvloop::engine::validation

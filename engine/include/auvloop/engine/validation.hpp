@@ -333,6 +333,30 @@ struct ResistanceResult {
 };
 ResistanceResult remus_resistance(const ResistanceRun& run);
 
+// remus-self-propulsion (remus_self_propulsion.cpp states the procedure): the vehicle free in
+// surge at `rpm` with the preset's calibrated curve, from the straight run towed at `speed`.
+struct SelfPropulsionRun {
+  std::string mesh = "coarse";
+  double speed = 1.54, rpm = 1500;                  // m/s, rev/min
+  double spin_up = 2, time = 4, dt = 0.01;          // s: towed, then free in surge; the step
+  std::function<void(double t, double u)> on_step;  // progress (s, m/s), free steps only
+};
+struct SelfPropulsionResult {
+  int cells = 0, steps = 0;  // steps: the free ones done
+  std::string failure;       // empty, or the plant's (the series hold the steps before it)
+  double seconds = 0;
+  double density = 0, diameter = 0;  // kg/m^3, m (the propeller's)
+  // Per free step: u (m/s), J, V_a (m/s), T (N), Q (N m), the walls' drag with the disk (N).
+  std::vector<double> t, u, J, inflow, thrust, torque, drag_with;
+  struct Point {
+    double u = 0, J = 0, inflow = 0, thrust = 0, torque = 0, drag_with = 0;
+    double wake_fraction = 0, KT = 0, KQ = 0;  // 1 - V_a / u; T / (rho n^2 D^4); Q / (.. D^5)
+  };
+  // The means over the steps in (from, to] and what follows from them at `rpm`.
+  [[nodiscard]] Point point(double from, double to, double rpm) const;
+};
+SelfPropulsionResult remus_self_propulsion(const SelfPropulsionRun& run);
+
 // The propeller's body-force disk in a uniform stream against annular momentum theory
 // (actuator_disk.cpp states the set-up): the disk-mean axial speed the solver gives and the one
 // the theory gives for the same loading.
