@@ -317,12 +317,12 @@ TEST(DiskForce, SamplesTheInflowOnAPlaneAheadRelativeToTheMovingGrid) {
 }
 
 // The remus100 preset's open-water curve is what its source says: the B3-71.8 at P/D 0.5 with J
-// scaled by 0.75 (the calibration, docs/cfd-plant.md), to the table's printed digits.
+// scaled by 0.71 (the calibration, docs/cfd-plant.md), to the table's printed digits.
 TEST(BSeries, TheRemusPresetsCurveIsTheScaledSeries) {
   const auto w = auvloop::geometry::preset_vehicle("remus100").propeller.open_water;
   ASSERT_FALSE(w.empty());
   for (std::size_t i = 0; i < w.J.size(); ++i) {
-    const auto p = b_series({3, 0.5, 0.718}, w.J[i] / 0.75);
+    const auto p = b_series({3, 0.5, 0.718}, w.J[i] / 0.71);
     EXPECT_NEAR(w.KT[i], p.KT, 5e-6) << "J " << w.J[i];
     EXPECT_NEAR(w.KQ[i], p.KQ, 5e-7) << "J " << w.J[i];
   }

@@ -121,8 +121,8 @@ TEST(Vehicle, CrossFieldChecks) {
               HasSubstr("J, KT and KQ must have as many entries (now 23, 23, 22)"));
 }
 
-// The preset's curve is the B-series B3-71.8 at P/D 0.5 with J scaled by 0.75: its points are
-// the series' at J / 0.75 (engine::b_series checks the series against propeller.md's table).
+// The preset's curve is the B-series B3-71.8 at P/D 0.5 with J scaled by 0.71: its points are
+// the series' at J / 0.71 (engine::b_series checks the series against propeller.md's table).
 TEST(Vehicle, PresetCarriesItsCalibratedOpenWaterCurve) {
   const auto v = preset_vehicle("remus100");
   const auto& w = v.propeller.open_water;
@@ -130,7 +130,7 @@ TEST(Vehicle, PresetCarriesItsCalibratedOpenWaterCurve) {
   EXPECT_THAT(w.source, HasSubstr("calibrated to 1.54 m/s at 1500 rpm"));
   EXPECT_DOUBLE_EQ(w.KT[0], 0.18920);
   EXPECT_DOUBLE_EQ(w.J.back(), 0.44);
-  EXPECT_DOUBLE_EQ(w.KQ.back(), 0.003543);
+  EXPECT_DOUBLE_EQ(w.KQ.back(), 0.002790);
 }
 
 TEST(Vehicle, EveryProblemOfAFileIsReportedAtOnce) {
