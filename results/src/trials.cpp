@@ -15,6 +15,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <variant>
 
@@ -145,59 +146,61 @@ double figure(const nlohmann::json& metrics, const std::string& path) {
   return at->get<double>();
 }
 
-// Runs `c` and reads `metric`; a failed run's reason goes to the notes (its figure, if any, is
-// of the steps before the failure).
-double run(const engine::CaseSpec& c, const std::string& metric, Result& res) {
-  const auto t0 = std::chrono::steady_clock::now();
-  const auto r = engine::run_case(c);
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const double value = figure(manoeuvre_metrics(c, r.loop.series), metric);
-  res.notes.push_back(fmt::format("{} plant{}: {} {:.4g} ({:.0f} s){}", engine::to_string(c.plant),
-                                  c.plant == engine::PlantKind::cfd ? ", " + c.cfd.mesh : "",
-                                  metric, value, seconds,
-                                  r.loop.failure ? "; failed: " + *r.loop.failure : ""));
-  return r.loop.failure ? std::nan("") : value;
-}
-
-// Runs `c` and returns its indices (null when the run failed; the reason goes to the notes) and
-// its series' heading change at `at` s (deg).
-struct Indices {
+// One run of a case: its indices (manoeuvre_metrics, of the steps before a failure), its series'
+// heading change at `at` s (deg; NaN beyond its end), its wall time (s) and the plant's failure.
+struct Outcome {
   nlohmann::json metrics;
   double heading_change = std::nan("");
+  double seconds = 0;
+  std::optional<std::string> failure;
+  // "cfd plant, coarse, dt 0.01 s (812 s)", and "; failed: ..." after a failure.
+  std::string label(const engine::CaseSpec& c) const {
+    return fmt::format("{} plant{}, dt {:g} s ({:.0f} s){}", engine::to_string(c.plant),
+                       c.plant == engine::PlantKind::cfd ? ", " + c.cfd.mesh : "", c.dt, seconds,
+                       failure ? "; failed: " + *failure : "");
+  }
 };
-Indices run_indices(const engine::CaseSpec& c, double at, Result& res) {
+Outcome run_outcome(const engine::CaseSpec& c, double at) {
   const auto t0 = std::chrono::steady_clock::now();
   const auto r = engine::run_case(c);
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  Indices out;
-  auto& s = r.loop.series;
+  Outcome out;
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  out.failure = r.loop.failure;
+  const auto& s = r.loop.series;
+  out.metrics = manoeuvre_metrics(c, s);
   const auto& t = s["t"].values;
   const std::vector<double> psi = unwrap_degrees(s["psi_true"].values);  // deg
-  for (std::size_t i = 0; i + 1 < t.size() && !r.loop.failure; ++i) {
+  for (std::size_t i = 0; i + 1 < t.size(); ++i) {
     if (t[i + 1] < at - 1e-9) continue;
     const double w = (at - t[i]) / (t[i + 1] - t[i]);
     out.heading_change = psi[i] + w * (psi[i + 1] - psi[i]) - psi.front();
     break;
   }
-  if (!r.loop.failure) out.metrics = manoeuvre_metrics(c, s);
-  const auto& m = out.metrics;
-  res.notes.push_back(fmt::format(
-      "{} plant{}, dt {:g} s ({:.0f} s): {}", engine::to_string(c.plant),
-      c.plant == engine::PlantKind::cfd ? ", " + c.cfd.mesh : "", c.dt, seconds,
-      r.loop.failure ? "failed: " + *r.loop.failure
-      : m.is_null()
-          ? std::string("no indices")
-          : fmt::format("rise time {:.3f} s, peak {:.2f} deg at {:.2f} s, overshoot {:.2f} %, "
-                        "settling {}, ITAE {:.1f} deg s^2; heading change at {:g} s {:.2f} deg",
-                        figure(m, "rise_time_s"), figure(m, "peak_deg"), figure(m, "peak_time_s"),
-                        figure(m, "overshoot_percent"),
-                        m["settled"].get<bool>()
-                            ? fmt::format("{:.2f} s", figure(m, "settling_time_s"))
-                            : std::string("not settled"),
-                        figure(m, "itae_deg_s2"), at, out.heading_change)));
   return out;
+}
+
+// Runs `c` and reads `metric`; a failed run's reason goes to the notes (its figure, if any, is
+// of the steps before the failure) and its figure is NaN.
+double run(const engine::CaseSpec& c, const std::string& metric, Result& res) {
+  const auto o = run_outcome(c, c.duration);
+  const double value = figure(o.metrics, metric);
+  res.notes.push_back(fmt::format("{}: {} {:.4g}", o.label(c), metric, value));
+  return o.failure ? std::nan("") : value;
+}
+
+// Runs the heading step `c`: its indices in the notes, and returned (null after a failure).
+nlohmann::json run_heading_indices(const engine::CaseSpec& c, Result& res) {
+  const auto o = run_outcome(c, c.duration);
+  const auto& m = o.metrics;
+  res.notes.push_back(fmt::format(
+      "{}: rise time {:.3f} s, peak {:.2f} deg at {:.2f} s, overshoot {:.2f} %, settling {}, "
+      "ITAE {:.1f} deg s^2",
+      o.label(c), figure(m, "rise_time_s"), figure(m, "peak_deg"), figure(m, "peak_time_s"),
+      figure(m, "overshoot_percent"),
+      m.value("settled", false) ? fmt::format("{:.2f} s", figure(m, "settling_time_s"))
+                                : std::string("not settled"),
+      figure(m, "itae_deg_s2")));
+  return o.failure ? nlohmann::json() : m;
 }
 
 // remus-heading-step (issue 18 items 8 and 9). Quick (CI): coarse, 0.2 s straight, the first
@@ -218,9 +221,14 @@ Result run_heading_step(bool quick) {
   if (quick) {
     c.cfd.spin_up = 0.2;
     c.duration = derivative.duration = 1;
-    const double cfd = run_indices(c, 1, res).heading_change;
-    const double model = run_indices(derivative, 1, res).heading_change;
-    const double ratio = cfd / model;
+    double change[2];  // deg at 1 s: CFD, derivative
+    for (const auto* run : {&c, &derivative}) {
+      const auto o = run_outcome(*run, 1);
+      res.notes.push_back(
+          fmt::format("{}: heading change at 1 s {:.2f} deg", o.label(*run), o.heading_change));
+      change[run == &c ? 0 : 1] = o.failure ? std::nan("") : o.heading_change;
+    }
+    const double ratio = change[0] / change[1];
     Row row{"heading change at 1 s (deg), CFD / derivative",
             ratio,
             1.0,
@@ -231,7 +239,7 @@ Result run_heading_step(bool quick) {
     res.rows.push_back(row);
     return res;
   }
-  run_indices(derivative, c.duration, res);
+  run_heading_indices(derivative, res);
   struct Variant {
     const char* mesh;
     double dt;
@@ -241,7 +249,7 @@ Result run_heading_step(bool quick) {
                           Variant{"coarse", 0.005}, Variant{"coarse", 0.02}}) {
     c.cfd.mesh = v.mesh;
     c.dt = v.dt;
-    m.push_back(run_indices(c, c.duration, res).metrics);
+    m.push_back(run_heading_indices(c, res));
   }
   res.notes.push_back(
       "the paper's Table 4: CFD in the loop rise 1.312 s, peak 110.86 deg, overshoot 23.17 %, "
