@@ -138,16 +138,20 @@ Result run_remus_resistance(bool quick) {
 
 // remus-self-propulsion (remus_self_propulsion.cpp runs one mesh): free in surge at 1500 rpm
 // from the straight run towed at 1.54 m/s (2 s), for 4 s; the self-propulsion point the means
-// of the last second. Full, on coarse and medium: the speed's drift over the last second within
-// 0.2 % and the surge balance |T - R_with| / T within 1 % (else it is not the steady point),
-// and on medium the speed within 2 % of 1.54 m/s. The preset's curve is calibrated on medium
-// towed at 1.54 m/s (docs/cfd-plant.md): this holds the free vehicle at the point the
-// calibration predicted, not an independent validation of the speed; coarse's speed shows the
-// grid's share. The wake fraction, thrust deduction (the towed bare drag at the self-propelled
-// speed, 4 s), KT, KQ and Prestero's thrust and torque are reported beside their references
-// (propeller.md section 1), not held: nothing published measures them on this vehicle. Quick
-// (CI): coarse, the straight run's first 0.12 s, then 0.1 s free: every step done, the speed
-// within 2 % of 1.54 m/s, the wake fraction in (0, 0.5) (V_a's sign and size).
+// of the last second. Held, full (coarse and medium): the speed's drift over the last second
+// within 0.2 % (the surge time constant, (m + m_a) over the balance's slope of about 38 N per
+// m/s, is 0.8 s: 4 s are five of them), and on medium the speed within 0.5 % of 1.54 m/s. The
+// preset's curve is calibrated on medium towed at 1.54 m/s (docs/cfd-plant.md), which predicts
+// 0.06 %: this holds the free vehicle where the towed calibration put it, not an independent
+// validation of the speed; coarse's speed shows the grid's share. Reported, not held: the thrust
+// deduction (the towed bare drag at the self-propelled speed, 4 s), T and Q beside Prestero's, w,
+// KT and KQ (remus_self_propulsion.cpp: w is tied to the calibrated scale). Quick (CI): coarse, the
+// straight run's first 0.12 s, then 0.1 s free: every step done, and surge momentum over the free
+// steps, m (u_end - u_released) against the impulse of T - R_with, within 25 %: the body moves as
+// the walls' loads say (a load's sign, a mass or a unit wrong is off by far more; BDF2's start
+// from rest gives about 5 %: measured 0.949). The young flow's thrust is small there (0.29 N
+// against 5.9 N of drag: J is high before the wake forms), so the thrust's reaction is checked by
+// the full run's speed, not here. Not held on the full run, whose net force is near zero.
 Result run_remus_self_propulsion(bool quick) {
   Result res{"remus-self-propulsion", {}, {}};
   constexpr double kRpm = 1500, kTime = 4, kWindow = 1;
@@ -170,6 +174,7 @@ Result run_remus_self_propulsion(bool quick) {
     const auto before = r.point(from - kWindow, from, kRpm);
     const double drift = (p.u - before.u) / p.u;
     const double balance = (p.thrust - p.drag_with) / p.thrust;
+
     res.notes.push_back(fmt::format(
         "{}: {} cells, {} free steps in {:.0f} s; {} at {} rpm: u {:.4f} m/s{}, J {:.4f}, V_a "
         "{:.4f} m/s, w {:.3f}, T {:.3f} N, R_with {:.3f} N (T - R_with {:+.2f} % of T), Q "
@@ -179,30 +184,27 @@ Result run_remus_self_propulsion(bool quick) {
         quick ? "" : fmt::format(" (change over the last second {:+.3f} %)", 100 * drift), p.J,
         p.inflow, p.wake_fraction, p.thrust, p.drag_with, 100 * balance, p.torque, p.KT, p.KQ));
     if (quick) {
-      res.rows.push_back(relative_to("speed after 0.1 s free (m/s), coarse", p.u, kSpeed, 0.02));
-      res.rows.push_back(
-          bound_row("|w - 0.25| (w in (0, 0.5)), coarse", std::abs(p.wake_fraction - 0.25), 0.25));
+      res.rows.push_back(relative_to("surge momentum over the free steps / impulse, " + mesh,
+                                     r.momentum_ratio(run.dt), 1.0, 0.25));
       continue;
     }
     res.rows.push_back(
         bound_row("speed drift over the last second, " + mesh, std::abs(drift), 2e-3));
-    res.rows.push_back(bound_row("|T - R_with| / T, " + mesh, std::abs(balance), 1e-2));
     if (mesh == "medium")
       res.rows.push_back(
-          relative_to("self-propelled speed at 1500 rpm (m/s), medium", p.u, kSpeed, 0.02));
+          relative_to("self-propelled speed at 1500 rpm (m/s), medium", p.u, kSpeed, 0.005));
     if (!r.failure.empty()) continue;  // no self-propulsion point to tow at
-    ResistanceRun bare;                // 5.
+    ResistanceRun bare;                // 6.
     bare.mesh = mesh;
     bare.speed = p.u;
     const auto towed = remus_resistance(bare);
     const double r_bare = towed.mean(bare.time - kWindow, bare.time).total();
     res.notes.push_back(fmt::format(
         "{}: towed without the disk at {:.4f} m/s: R_bare {:.3f} N{}; thrust deduction t = 1 - "
-        "R_bare / T = {:.3f} (propeller.md: about 0.1); wake fraction {:.3f} (0.056 Fossen, 0.2 "
-        "Sgarioto); T {:.3f} N against Prestero's X_prop 3.86 N (his drag model), Q {:.4f} N m "
-        "against his K_prop 0.543 N m",
+        "R_bare / T = {:.3f} (propeller.md: about 0.1); T {:.3f} N against Prestero's X_prop "
+        "3.86 N (his drag model), Q {:.4f} N m against his K_prop 0.543 N m",
         mesh, p.u, r_bare, towed.failure.empty() ? "" : " (failed: " + towed.failure + ")",
-        1 - r_bare / p.thrust, p.wake_fraction, p.thrust, p.torque));
+        1 - r_bare / p.thrust, p.thrust, p.torque));
   }
   return res;
 }

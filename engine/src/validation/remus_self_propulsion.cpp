@@ -11,10 +11,17 @@
 //   3. Per step: u (m/s), the propeller's J, inflow speed V_a on its plane (m/s), thrust T (N),
 //      torque Q (N m) and R_with (N, minus the walls' x force).
 //   4. The self-propulsion point: their means over the last `window` s; the wake fraction
-//      w = 1 - V_a / u, KT = T / (rho n^2 D^4), KQ = Q / (rho n^2 D^5).
-//   5. The thrust deduction t = 1 - R_bare / T, with R_bare the towed resistance of hull + fins
+//      w = 1 - V_a / u, KT = T / (rho n^2 D^4), KQ = Q / (rho n^2 D^5) (n in rev/s). V_a is
+//      sampled on the plane ahead of the disk, so it holds part of the disk's own suction, and
+//      the curve's J scale s is calibrated through it (KT_B(V_a / (s n D))): w and s are one
+//      parameter, and this w is the plant's, not comparable with a published wake fraction.
+//      KT and KQ are the curve read at the mean J.
+//   5. Surge momentum over the free steps: m (u_end - u_released) = dt sum (T - R_with), the
+//      rigid body's mass against the loads' impulse (the walls' pressure carries the water's
+//      added mass; the coupling's added-mass estimate only steadies the iterations).
+//   6. The thrust deduction t = 1 - R_bare / T, with R_bare the towed resistance of hull + fins
 //      without the disk at the self-propelled speed (remus_resistance at that speed, 4 s, the
-//      last second's mean), and the balance T - R_with (zero when the surge equation is at rest).
+//      last second's mean): the usual definition at the self-propulsion point, where T = R_with.
 #include <chrono>
 #include <cmath>
 
@@ -37,6 +44,8 @@ SelfPropulsionResult remus_self_propulsion(const SelfPropulsionRun& run) {
   const auto& v = c.vehicle.vehicle;
   r.density = v.mass.water_density;
   r.diameter = v.propeller.diameter;
+  r.mass = v.mass.mass;
+  r.released_at = run.speed;
   const auto t0 = std::chrono::steady_clock::now();
   CfdPlant plant(v, settings);
   r.cells = plant.cells();
@@ -86,13 +95,25 @@ SelfPropulsionResult::Point SelfPropulsionResult::point(double from, double to, 
     p.drag_with += drag_with[i];
     ++n;
   }
-  if (n == 0) return p;
+  if (n == 0) {
+    for (double* x : {&p.u, &p.J, &p.inflow, &p.thrust, &p.torque, &p.drag_with, &p.wake_fraction,
+                      &p.KT, &p.KQ})
+      *x = std::nan("");
+    return p;
+  }
   for (double* x : {&p.u, &p.J, &p.inflow, &p.thrust, &p.torque, &p.drag_with}) *x /= n;
   const double rps = rpm / 60;  // 4.
   p.wake_fraction = 1 - p.inflow / p.u;
   p.KT = p.thrust / (density * rps * rps * std::pow(diameter, 4));
   p.KQ = p.torque / (density * rps * rps * std::pow(diameter, 5));
   return p;
+}
+
+double SelfPropulsionResult::momentum_ratio(double dt) const {
+  if (u.empty()) return std::nan("");
+  double impulse = 0;  // N s
+  for (std::size_t i = 0; i < u.size(); ++i) impulse += dt * (thrust[i] - drag_with[i]);
+  return mass * (u.back() - released_at) / impulse;
 }
 
 }  // namespace auvloop::engine::validation

@@ -346,14 +346,19 @@ struct SelfPropulsionResult {
   std::string failure;       // empty, or the plant's (the series hold the steps before it)
   double seconds = 0;
   double density = 0, diameter = 0;  // kg/m^3, m (the propeller's)
+  double mass = 0, released_at = 0;  // kg (the rigid body's), m/s (u when released)
   // Per free step: u (m/s), J, V_a (m/s), T (N), Q (N m), the walls' drag with the disk (N).
   std::vector<double> t, u, J, inflow, thrust, torque, drag_with;
   struct Point {
     double u = 0, J = 0, inflow = 0, thrust = 0, torque = 0, drag_with = 0;
     double wake_fraction = 0, KT = 0, KQ = 0;  // 1 - V_a / u; T / (rho n^2 D^4); Q / (.. D^5)
   };
-  // The means over the steps in (from, to] and what follows from them at `rpm`.
+  // The means over the steps in (from, to] and what follows from them at `rpm` (NaN when no
+  // step lies there).
   [[nodiscard]] Point point(double from, double to, double rpm) const;
+  // Surge momentum over the free steps: m (u_end - u_released) over dt times the sum of the
+  // net surge force T - R_with (1 when the body moved as the loads on it say; NaN without steps).
+  [[nodiscard]] double momentum_ratio(double dt) const;
 };
 SelfPropulsionResult remus_self_propulsion(const SelfPropulsionRun& run);
 
