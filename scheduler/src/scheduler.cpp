@@ -199,16 +199,24 @@ bool Scheduler::complete_from_cache(JobRecord& job) {
   // execution: only then is the log read (it grows for the daemon's life), and a missing line
   // recorded. A worker that ended on its own (running) has logged.
   job.cache_hit = job.state != "running" && job.attempts == 0;
-  const bool requeued_after_restart = job.state != "running" && job.attempts > 0;
-  const auto log = config_.state_dir / "executions.log";
-  if (requeued_after_restart && !execution_logged(log, job.key))
-    append_execution(log, job.key, job.name, m.value("wall_time_s", 0.0));
+  if (job.state != "running" && job.attempts > 0) log_execution_once(job, m);
   job.state = m.value("failure", json()).is_string() ? "failed" : "succeeded";
   job.failure = job.state == "failed" ? m["failure"].get<std::string>() : "";
   job.finished_ms = now_ms();
   if (job.started_ms == 0) job.started_ms = job.finished_ms;
   finish_job(job, &*hit.run);
   return true;
+}
+
+void Scheduler::log_execution_once(const JobRecord& job, const json& manifest) {
+  const auto log = config_.state_dir / "executions.log";
+  if (!execution_logged(log, job.key))
+    append_execution(log, job.key, job.name, manifest.value("wall_time_s", 0.0));
+}
+
+void Scheduler::log_stored_execution(const JobRecord& job) {
+  const auto hit = cache_.lookup(job.key);
+  if (hit.state == results::ResultCache::State::valid) log_execution_once(job, hit.run->manifest);
 }
 
 void Scheduler::finish_job(JobRecord& job, const results::StoredRun* run) {
@@ -335,10 +343,15 @@ void Scheduler::on_finished(const std::string& id_text, const ExitInfo& exit) {
   if (stopping_ && !draining_) return;
   try {
     auto job = store_->job(id);
-    if (!job || job->state != "running") return;
+    if (!job) return;
+    // A worker timed out, cancelled or killed may have stored its result and not logged it yet.
+    if (!exit.ok()) log_stored_execution(*job);
+    if (job->state != "running") return;  // cancelled: recorded when it was cancelled
     atomically([&] {
       job->finished_ms = now_ms();
-      if (!exit.ok() || !complete_from_cache(*job)) {
+      // A result stored before the worker was stopped is complete (stored atomically, verified
+      // on lookup): the job ends with it, whatever cut the worker short afterwards.
+      if (!complete_from_cache(*job)) {
         job->state = "failed";
         job->failure = exit.ok() ? "the worker ended without storing a usable result; log: " +
                                        (job_dir(config_, id) / "worker.log").string()

@@ -23,15 +23,17 @@ namespace {
 using nlohmann::json;
 using Clock = std::chrono::steady_clock;
 
-// Test hook (docs/scheduler.md): AUVLOOP_WORKER_FAILPOINT="abort:NAME,hang:OTHER" aborts, or
-// sleeps until killed, when the case is called NAME (OTHER). Lets the tests crash and hang real
-// workers.
-void failpoint(const std::string& case_name) {
+// Test hook (docs/scheduler.md): AUVLOOP_WORKER_FAILPOINT="abort:NAME,hang:OTHER,hang-stored:THIRD"
+// aborts, or sleeps until killed, when the case is called NAME (OTHER) before it runs, or sleeps
+// until killed after storing its result and before logging its execution (THIRD). Lets the tests
+// crash and hang real workers.
+void failpoint(const std::string& stage, const std::string& case_name) {
   const char* fp = std::getenv("AUVLOOP_WORKER_FAILPOINT");
   if (!fp) return;
   const std::string list = std::string(",") + fp + ",";
-  if (list.find(",abort:" + case_name + ",") != std::string::npos) std::abort();
-  if (list.find(",hang:" + case_name + ",") != std::string::npos) {
+  if (stage == "start" && list.find(",abort:" + case_name + ",") != std::string::npos) std::abort();
+  const std::string hang = stage == "start" ? ",hang:" : ",hang-stored:";
+  if (list.find(hang + case_name + ",") != std::string::npos) {
     for (;;) pause();
   }
 }
@@ -104,7 +106,7 @@ int run_worker(const WorkerArgs& args) {
                key);
     return 3;
   }
-  failpoint(c.name);
+  failpoint("start", c.name);
   fmt::print("worker: {} ({}), {:g} s simulated at dt {:g} s\n", c.name, key, c.duration, c.dt);
   ProgressChannel progress(args.progress_fd, c.duration);
   const auto start = Clock::now();
@@ -154,6 +156,7 @@ int run_worker(const WorkerArgs& args) {
     std::filesystem::remove(options.checkpoint, ignored);
     if (!options.fields.empty()) std::filesystem::remove_all(options.fields, ignored);
   }
+  failpoint("stored", c.name);
   append_execution(args.executions_log, key, c.name, wall);
   fmt::print("worker: {} in {:.3f} s{}\n", run.loop.failure ? "failed" : "done", wall,
              run.loop.failure ? ": " + *run.loop.failure : "");

@@ -2,7 +2,9 @@
 // auvloopd end to end: a real daemon on a temporary socket and state directory, driven over gRPC.
 #include <sys/stat.h>
 
+#include <filesystem>
 #include <fstream>
+#include <set>
 
 #include <grpcpp/generic/generic_stub.h>
 #include <gtest/gtest.h>
@@ -159,6 +161,39 @@ TEST(Daemon, CancelSurvivesAKillRightAfterTheReply) {
   ASSERT_TRUE(d.stub().Status(sc.get(), v1::StatusRequest(), &status).ok());
   EXPECT_EQ(status.running(), 0);
   EXPECT_EQ(status.queued(), 0);
+}
+
+// A worker stopped after storing its result and before logging its execution: the case was
+// computed, so it has its one line in executions.log, and the job ends with the stored result
+// (timed out) or stays cancelled (cancelled); a resubmission is a cache hit that adds no line.
+TEST(Daemon, AWorkerStoppedAfterStoringItsResultIsLoggedOnce) {
+  Daemon d({"--slots", "2", "--no-plots"},
+           {{"AUVLOOP_WORKER_FAILPOINT", "hang-stored:late,hang-stored:cut"}});
+  d.start();
+  const auto late = d.submit(heading_case("late"), 3.0);  // 3 s wall-time limit
+  const auto cut = d.submit(heading_case("cut"));
+  const auto stored = [&](const std::string& key) {
+    return std::filesystem::exists(d.state_dir() / "cache" / key.substr(0, 2) / key);
+  };
+  for (int i = 0; i < 3000 && !stored(cut.key()); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  ASSERT_TRUE(stored(cut.key()));
+  EXPECT_EQ(d.job(cut.id()).state(), v1::RUNNING);  // hung before logging
+  EXPECT_EQ(d.cancel(cut.id()), 1);
+  EXPECT_EQ(d.wait_job(cut.id(), 30).state(), v1::CANCELLED);
+
+  const auto l = d.wait_job(late.id(), 60);
+  EXPECT_EQ(l.state(), v1::SUCCEEDED) << l.failure();
+  EXPECT_FALSE(l.cache_hit());
+  const auto runs = d.executions();
+  EXPECT_EQ(runs.size(), 2U);
+  EXPECT_EQ(std::set<std::string>(runs.begin(), runs.end()),
+            (std::set<std::string>{late.key(), cut.key()}));
+
+  const auto again = d.submit(heading_case("cut"));
+  EXPECT_EQ(again.state(), v1::SUCCEEDED);
+  EXPECT_TRUE(again.cache_hit());
+  EXPECT_EQ(d.executions().size(), 2U);
 }
 
 TEST(Daemon, DrainingStopRecordsTheRunningJobAndExits) {

@@ -109,6 +109,12 @@ class Scheduler {
   void launch_ready(Lock& lock);
   void launch(JobRecord& job);
   bool complete_from_cache(JobRecord& job);
+  // Appends the job's line to executions.log unless the log has one for its key (a worker stopped
+  // between storing its result and logging it; executions_log.hpp). Reads the log whole: only for
+  // jobs whose worker may have been cut short.
+  void log_execution_once(const JobRecord& job, const nlohmann::json& manifest);
+  // A worker that did not end on its own: when its result is stored, logs its execution once.
+  void log_stored_execution(const JobRecord& job);
   void on_progress(const std::string& id, double t, double total);
   void on_finished(const std::string& id, const ExitInfo& exit);
   // Stores the final state, indexes the cached run (when the job ended with one, as `run`) and
