@@ -27,6 +27,7 @@ struct RunOptions {
   bool quiet = false;
   bool resume = false;
   double checkpoint_every = 0;  // s simulated; 0: the plant's default
+  int threads = -1;             // -1: the case's [cfd] threads
   std::vector<std::string> dirs;
   std::vector<std::string> labels;
 };
@@ -96,6 +97,7 @@ class ProgressLine {
 int run_case_command(const RunOptions& o) {
   engine::CaseSpec spec = engine::load_case(o.case_file);
   if (!o.plant.empty()) spec.plant = engine::plant_kind_from_string(o.plant);
+  if (o.threads >= 0) spec.cfd.threads = o.threads;  // not in the key: the same bits
   const std::string plant = engine::to_string(spec.plant);
   const std::string out = o.out.empty() ? fmt::format("out/{}-{}", spec.name, plant) : o.out;
   const bool bar = !o.quiet && isatty(STDERR_FILENO);
@@ -224,6 +226,10 @@ void register_run_commands(CLI::App& app, int& exit_code) {
   run->add_option("--plant", o->plant, "Override the case's plant")
       ->check(CLI::IsMember({"derivative", "linearized", "cfd"}));
   run->add_flag("--quiet,-q", o->quiet, "Print nothing but errors");
+  run->add_option("--threads", o->threads,
+                  "The CFD plant's threads (overrides [cfd] threads; 0: every core the process "
+                  "may use). The results are bitwise the same for any number")
+      ->check(CLI::Range(0, 256));
   run->add_flag("--resume", o->resume,
                 "Continue a stopped run from its checkpoint (OUT.checkpoint), bitwise as if it "
                 "had not stopped; without one, start afresh");

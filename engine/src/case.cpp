@@ -5,8 +5,10 @@
 #include <cmath>
 #include <functional>
 #include <numbers>
+#include <optional>
 
 #include <fmt/format.h>
+#include <tbb/global_control.h>
 
 #include "auvloop/engine/cfd_plant.hpp"
 #include "auvloop/engine/derivative_plant.hpp"
@@ -177,6 +179,7 @@ void read_cfd(Table root, CaseSpec& c) {
   f.max_flow_speed = t->number_or("max_flow_speed", 20, Range::non_negative(), "m/s");
   f.fields_at = t->optional_numbers("fields_at", 1, 100, Range::open_closed(0, c.duration), "s")
                     .value_or(std::vector<double>{});
+  f.threads = static_cast<int>(t->integer_or("threads", 0, 0, 256));
   t->finish();
   read_mesh(root, c);
 }
@@ -490,6 +493,12 @@ CfdPlantSettings cfd_plant_settings(const CaseSpec& c) {
 }
 
 CaseRun run_case(const CaseSpec& c, const CaseRunOptions& options) {
+  // The CFD plant's threads: every parallel loop of the mesher and the solver runs on oneTBB's
+  // pool, which this caps for the run's life (0: no cap, every core the process may use).
+  std::optional<tbb::global_control> threads;
+  if (c.plant == PlantKind::cfd && c.cfd.threads > 0)
+    threads.emplace(tbb::global_control::max_allowed_parallelism,
+                    static_cast<std::size_t>(c.cfd.threads));
   const auto& progress = options.progress;
   const bool resuming =
       options.resume && !options.checkpoint.empty() && std::filesystem::exists(options.checkpoint);

@@ -154,6 +154,16 @@ TEST(Case, CfdTableIsReadCheckedAndHashed) {
   }
   EXPECT_THAT(error_of(example("cfd-heading-step.toml"), "\ntolerance = 1e-6", "\ntolerance = 0.1"),
               HasSubstr("cfd.tolerance"));
+  // The threads are read and checked, and not in the key (results are bitwise the same for any
+  // number of threads, so a run on one is a cache hit for the same case on two).
+  EXPECT_EQ(c.cfd.threads, 0);
+  std::string threaded = example("cfd-heading-step.toml");
+  threaded.replace(threaded.find("[cfd]\n"), 6, "[cfd]\nthreads = 1\n");
+  const CaseSpec t = parse_case(threaded, "t", AUVLOOP_SOURCE_DIR);
+  EXPECT_EQ(t.cfd.threads, 1);
+  EXPECT_EQ(j.dump(), canonical_json(t).dump());
+  EXPECT_THAT(error_of(example("cfd-heading-step.toml"), "[cfd]\n", "[cfd]\nthreads = -1\n"),
+              HasSubstr("cfd.threads"));
 }
 
 // A CFD case's [mesh] table sets the grids on top of [cfd] mesh's preset: read with the mesher's

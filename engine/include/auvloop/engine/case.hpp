@@ -52,6 +52,9 @@ struct CfdSpec {
   // Manoeuvre times (s) at which the flow is kept for a person: ParaView fields and the
   // pictures of the stern plane and the upper rudder (CaseRunOptions::fields; docs/results.md)
   std::vector<double> fields_at;
+  // Threads of the solver (0: every core the process may use). Not part of the case's content
+  // hash: results are bitwise the same for any number of threads.
+  int threads = 0;
 };
 
 struct HeadingStepSpec {
