@@ -184,6 +184,23 @@ void read_cfd(Table root, CaseSpec& c) {
   read_mesh(root, c);
 }
 
+// Defaults tuned on the derivative plant at 1500 rpm (docs/case-file.md, "Speed control").
+constexpr double kSpeedKp = 2000.0;  // rev/min per m/s
+constexpr double kSpeedKi = 500.0;   // rev/min per m
+
+void read_speed_control(Table root, CaseSpec& c) {
+  auto t = root.optional_table("speed_control");
+  if (!t) return;
+  SpeedControlSettings s;
+  s.speed = t->number_or("speed", c.initial_speed, Range::closed(0, 20), "m/s");
+  s.kp = t->number_or("kp", kSpeedKp, Range::non_negative(), "rev/min per m/s");
+  s.ki = t->number_or("ki", kSpeedKi, Range::non_negative(), "rev/min per m");
+  s.feed_forward = c.rpm;
+  s.max_rpm = c.propeller.max;
+  t->finish();
+  c.speed_control = s;
+}
+
 void read_initial(Table root, CaseSpec& c) {
   auto init = root.optional_table("initial");
   c.rpm = init ? init->number_or("rpm", 1500, Range::non_negative(), "rev/min") : 1500;
@@ -227,6 +244,7 @@ CaseSpec parse_case(std::string_view text, const std::string& source_name,
   read_cfd(root, c);
   read_initial(root, c);
   read_actuators(root, c);
+  read_speed_control(root, c);
   c.manoeuvre = read_manoeuvre(root, root.table("manoeuvre"), c.rudder);
   auto sensors = root.optional_table("sensors");
   c.ideal_sensors =
@@ -301,6 +319,14 @@ nlohmann::json canonical_json(const CaseSpec& c) {
           {"X_prop", h.X_prop},
           {"K_prop", h.K_prop},
           {"reference_rpm", h.reference_rpm}}}}}};
+  if (c.speed_control) {  // only when present: the keys of cases without it are unchanged
+    const auto& sc = *c.speed_control;
+    j["speed_control"] = {{"speed_m_s", sc.speed},
+                          {"kp_rpm_per_m_s", sc.kp},
+                          {"ki_rpm_per_m", sc.ki},
+                          {"feed_forward_rpm", sc.feed_forward},
+                          {"max_rpm", sc.max_rpm}};
+  }
   if (c.plant == PlantKind::cfd) {
     const auto& w = c.vehicle.vehicle.propeller.open_water;
     j["cfd"] = {{"mesh", c.cfd.mesh},
@@ -409,7 +435,7 @@ nlohmann::json straight_run_json(const CaseSpec& c) {
 
 namespace {
 std::unique_ptr<Manoeuvre> make_manoeuvre(const CaseSpec& c) {
-  return std::visit(
+  auto manoeuvre = std::visit(
       [&](const auto& m) -> std::unique_ptr<Manoeuvre> {
         using T = std::decay_t<decltype(m)>;
         if constexpr (std::is_same_v<T, HeadingStepSpec>) {
@@ -424,6 +450,8 @@ std::unique_ptr<Manoeuvre> make_manoeuvre(const CaseSpec& c) {
         }
       },
       c.manoeuvre);
+  if (!c.speed_control) return manoeuvre;
+  return std::make_unique<SpeedControl>(std::move(manoeuvre), *c.speed_control);
 }
 }  // namespace
 

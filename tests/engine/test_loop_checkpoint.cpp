@@ -48,10 +48,16 @@ class StoppingPlant final : public Plant {
   long stop_, steps_ = 0;
 };
 
-LoopResult heading_step(long stop, const LoopSettings& extra) {
+// With `speed_control`, the heading step inside a SpeedControl (its integral is state too).
+LoopResult heading_step(long stop, const LoopSettings& extra, bool speed_control = false) {
   StoppingPlant plant(stop);
   VirtualIns ins;
-  HeadingStep step(90 * kDeg, {1.5, 0.6, 1.0}, {}, 1500);
+  std::unique_ptr<Manoeuvre> step =
+      std::make_unique<HeadingStep>(90 * kDeg, PidGains{1.5, 0.6, 1.0}, PidOptions{}, 1500);
+  if (speed_control)
+    step = std::make_unique<SpeedControl>(
+        std::move(step),
+        SpeedControlSettings{.speed = 1.54, .kp = 2000, .ki = 500, .feed_forward = 1500});
   ActuatorLimits rudder{0.1, -15 * kDeg, 15 * kDeg, 10 * kDeg};
   Actuators act{FirstOrderActuator(rudder, 0.0), FirstOrderActuator(rudder, 0.0),
                 FirstOrderActuator({}, 1500)};
@@ -60,7 +66,7 @@ LoopResult heading_step(long stop, const LoopSettings& extra) {
   LoopSettings s = extra;
   s.dt = 0.01;
   s.duration = 8;
-  return run_closed_loop(plant, ins, step, act, initial, s);
+  return run_closed_loop(plant, ins, *step, act, initial, s);
 }
 
 std::filesystem::path scratch(const std::string& name) {
@@ -72,19 +78,19 @@ std::filesystem::path scratch(const std::string& name) {
 }
 }  // namespace
 
-TEST(LoopCheckpoint, AResumedRunIsBitwiseTheUninterruptedOne) {
-  const auto whole = heading_step(-1, {});
+void expect_resumed_run_bitwise(bool speed_control) {
+  const auto whole = heading_step(-1, {}, speed_control);
   ASSERT_FALSE(whole.failure);
   LoopSettings s;
   s.checkpoint = scratch("resume.checkpoint");
   s.checkpoint_every = 100;
   s.checkpoint_key = "case 1";
   s.resume = true;
-  const auto stopped = heading_step(437, s);  // last checkpoint after step 400
+  const auto stopped = heading_step(437, s, speed_control);  // last checkpoint after step 400
   ASSERT_TRUE(stopped.failure);
   EXPECT_FALSE(stopped.checkpoint_warning) << *stopped.checkpoint_warning;
   ASSERT_TRUE(std::filesystem::exists(s.checkpoint));
-  const auto resumed = heading_step(-1, s);
+  const auto resumed = heading_step(-1, s, speed_control);
   ASSERT_FALSE(resumed.failure) << *resumed.failure;
   EXPECT_EQ(resumed.resumed_at, 400);
   ASSERT_EQ(resumed.series.rows(), whole.series.rows());
@@ -97,6 +103,14 @@ TEST(LoopCheckpoint, AResumedRunIsBitwiseTheUninterruptedOne) {
   }
   // The heading step did turn the vehicle after the resume point.
   EXPECT_GT(std::abs(whole.series["psi"].values.back() - whole.series["psi"].values[400]), 1.0);
+}
+
+TEST(LoopCheckpoint, AResumedRunIsBitwiseTheUninterruptedOne) {
+  expect_resumed_run_bitwise(false);
+}
+
+TEST(LoopCheckpoint, AResumedRunUnderSpeedControlIsBitwiseTheUninterruptedOne) {
+  expect_resumed_run_bitwise(true);
 }
 
 TEST(LoopCheckpoint, ResumeWithoutAFileStartsAfresh) {

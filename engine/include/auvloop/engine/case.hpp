@@ -99,6 +99,9 @@ struct CaseSpec {
   double initial_heading = 0;  // rad
   double rpm = 1500;           // propeller command, rev/min
   ManoeuvreSpec manoeuvre;
+  // [speed_control]: the propeller command from the surge speed error (closed_loop.hpp) instead
+  // of the manoeuvre's constant rpm; feed_forward is the [initial] rpm, max_rpm the propeller's.
+  std::optional<SpeedControlSettings> speed_control;
   ActuatorLimits rudder, stern_plane, propeller;
   bool ideal_sensors = false;
   IndexSpec indices;

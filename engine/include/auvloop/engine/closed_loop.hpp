@@ -21,6 +21,7 @@
 #include <filesystem>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -89,6 +90,39 @@ class ZigZag final : public Manoeuvre {
  private:
   double rudder_, switch_, psi0_, rpm_;
   int direction_ = 1;  // +1: turning to starboard
+};
+
+// Speed control (the paper's "desired speed", section 4.2): a manoeuvre's propeller command is
+// replaced by a PI on the surge speed error about a feed-forward rpm, forward Euler like the
+// heading PID (engine/speed_control.cpp):
+//   1. e_k = u_d - u_k                             (m/s; u_k the sensors' surge speed)
+//   2. I_k = I_{k-1} + e_k dt, unless n_ff + Kp e_k + Ki (I_{k-1} + e_k dt) lies beyond
+//      [0, max_rpm] on the side e_k pushes to: then I_k = I_{k-1} (conditional integration, as
+//      the heading PID's anti-windup: a saturated propeller does not wind the integral up)
+//   3. n_c = clamp(n_ff + Kp e_k + Ki I_k, 0, max_rpm)
+// The inner manoeuvre keeps every other command. The propeller actuator's lag and limits follow
+// (step 3 of the loop). With Kp = Ki = 0 the command is n_ff: the manoeuvre's own rpm when
+// n_ff is its rpm.
+struct SpeedControlSettings {
+  double speed = 0;         // m/s, the desired surge speed u_d
+  double kp = 0;            // rev/min per m/s
+  double ki = 0;            // rev/min per m (per m/s of error and second)
+  double feed_forward = 0;  // rev/min, n_ff (the trim rpm of u_d, or near it)
+  double max_rpm = 3000;    // rev/min
+};
+
+class SpeedControl final : public Manoeuvre {
+ public:
+  SpeedControl(std::unique_ptr<Manoeuvre> inner, SpeedControlSettings settings);
+  Commands command(double t, const Measurements& m, double dt) override;
+  void save(StateWriter& out) const override;  // the inner manoeuvre's state, then I
+  void load(StateReader& in) override;
+  [[nodiscard]] double integral() const { return integral_; }  // m
+
+ private:
+  std::unique_ptr<Manoeuvre> inner_;
+  SpeedControlSettings s_;
+  double integral_ = 0;  // m: the sum of e_k dt
 };
 
 struct Actuators {
