@@ -179,6 +179,7 @@ void read_cfd(Table root, CaseSpec& c) {
   f.max_flow_speed = t->number_or("max_flow_speed", 20, Range::non_negative(), "m/s");
   f.fields_at = t->optional_numbers("fields_at", 1, 100, Range::open_closed(0, c.duration), "s")
                     .value_or(std::vector<double>{});
+  f.disk_mean_inflow = t->choice_or("propeller_inflow", "plane", {"plane", "disk"}) == "disk";
   f.threads = static_cast<int>(t->integer_or("threads", 0, 0, 256));
   t->finish();
   read_mesh(root, c);
@@ -346,6 +347,7 @@ nlohmann::json canonical_json(const CaseSpec& c) {
                      ? nlohmann::json::parse(mesher::mesh_settings_json(*c.cfd.mesh_settings))
                      : nlohmann::json()},
                 {"fields_at_s", c.cfd.fields_at}};
+    if (c.cfd.disk_mean_inflow) j["cfd"]["propeller_inflow"] = "disk";  // the default's keys kept
     // The grids' revision: mesh_settings_json carries it when a [mesh] table is given (one place).
     if (!c.cfd.mesh_settings) j["cfd"]["mesh_revision"] = mesher::mesh_preset_revision();
     // The flow sees the vehicle's shape, not only its name: a vehicle file edited in place
@@ -514,6 +516,7 @@ CfdPlantSettings cfd_plant_settings(const CaseSpec& c) {
   s.intermediate_tolerance = c.cfd.intermediate_tolerance;
   s.max_flow_speed = c.cfd.max_flow_speed;
   s.mesh_settings = c.cfd.mesh_settings;
+  if (c.cfd.disk_mean_inflow) s.inflow_offset = 0;  // fv::DiskForce step 4: the disk cells' mean
   s.reference_speed = std::max(c.initial_speed, 0.1);
   s.added_mass = prestero_added_mass(c.vehicle.hydrodynamics);
   s.neutral_buoyancy = c.buoyancy == Buoyancy::neutral;

@@ -164,6 +164,20 @@ TEST(Case, CfdTableIsReadCheckedAndHashed) {
   EXPECT_EQ(j.dump(), canonical_json(t).dump());
   EXPECT_THAT(error_of(example("cfd-heading-step.toml"), "[cfd]\n", "[cfd]\nthreads = -1\n"),
               HasSubstr("cfd.threads"));
+  // J from the disk cells' mean (OpenFOAM's propellerDisk) instead of the inflow plane: in the
+  // key (the default's keys unchanged) and handed to the plant as a zero inflow offset.
+  EXPECT_FALSE(c.cfd.disk_mean_inflow);
+  EXPECT_LT(cfd_plant_settings(c).inflow_offset, 0.0);  // the plant's default plane
+  std::string disk = example("cfd-heading-step.toml");
+  disk.replace(disk.find("[cfd]\n"), 6, "[cfd]\npropeller_inflow = \"disk\"\n");
+  const CaseSpec dc = parse_case(disk, "d", AUVLOOP_SOURCE_DIR);
+  EXPECT_TRUE(dc.cfd.disk_mean_inflow);
+  EXPECT_EQ(cfd_plant_settings(dc).inflow_offset, 0.0);
+  EXPECT_FALSE(j["cfd"].contains("propeller_inflow"));
+  EXPECT_EQ(canonical_json(dc)["cfd"]["propeller_inflow"], "disk");
+  EXPECT_THAT(
+      error_of(example("cfd-heading-step.toml"), "[cfd]\n", "[cfd]\npropeller_inflow = \"wake\"\n"),
+      HasSubstr("cfd.propeller_inflow"));
 }
 
 // A CFD case's [mesh] table sets the grids on top of [cfd] mesh's preset: read with the mesher's

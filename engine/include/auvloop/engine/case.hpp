@@ -52,6 +52,10 @@ struct CfdSpec {
   // Manoeuvre times (s) at which the flow is kept for a person: ParaView fields and the
   // pictures of the stern plane and the upper rudder (CaseRunOptions::fields; docs/results.md)
   std::vector<double> fields_at;
+  // Where the propeller's J is taken: false, the inflow plane a quarter diameter ahead of the
+  // disk (the paper's; the curve is calibrated through it); true, the disk cells' mean
+  // (OpenFOAM's propellerDisk; it includes part of the disk's own induction, propeller.md).
+  bool disk_mean_inflow = false;
   // Threads of the solver (0: every core the process may use). Not part of the case's content
   // hash: results are bitwise the same for any number of threads.
   int threads = 0;
