@@ -129,6 +129,8 @@ void read_optimizer(input::Table root, optimizer::OptimizerConfig& c) {
   c.batch_size = static_cast<int>(o->integer_or("batch_size", 2, 1, 64));
   c.solver = o->choice_or("solver", "pso", {"pso", "nlopt"});
   c.failure_policy = o->choice_or("failure_policy", "classify", {"classify", "impute"});
+  c.output_transform =
+      o->choice_or("output_transform", c.output_transform, {"none", "log", "auto"});
   c.seed = static_cast<std::uint64_t>(
       o->integer_or("seed", 1, 0, std::numeric_limits<std::int64_t>::max()));
   if (auto t = o->optional_numbers("theta_bounds", 2, 2, Range::positive(), "")) {

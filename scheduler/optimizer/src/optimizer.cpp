@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "auvloop/optimizer/design.hpp"
+#include "auvloop/optimizer/output_transform.hpp"
 #include "random.hpp"
 
 namespace auvloop::optimizer {
@@ -43,6 +44,9 @@ void validate(const OptimizerConfig& c) {
   }
   if (c.solver != "pso" && c.solver != "nlopt")
     throw std::invalid_argument("optimizer: solver must be \"pso\" or \"nlopt\"");
+  if (c.output_transform != "none" && c.output_transform != "log" && c.output_transform != "auto")
+    throw std::invalid_argument(
+        "optimizer: output_transform must be \"none\", \"log\" or \"auto\"");
 }
 
 }  // namespace
@@ -157,8 +161,13 @@ Batch SurrogateOptimizer::propose() {
     X.row(static_cast<Eigen::Index>(i)) = xs[i].transpose();
   const Eigen::VectorXd y =
       Eigen::Map<const Eigen::VectorXd>(ys.data(), static_cast<Eigen::Index>(ys.size()));
-  const Kriging model(X, y, config_.kriging);
+  // The surrogate on the configured scale (output_transform.hpp): everything below works on g(y).
+  const TransformedFit fitted = fit_transformed(X, y, config_.output_transform, config_.kriging);
+  const Kriging& model = fitted.model;
+  const OutputTransform& g = fitted.transform;
+  const Eigen::VectorXd gy = g(y);
   loo_rmse_ = model.loo_rmse_normalised();
+  transform_ = g.name();
   // Probability that an evaluation at x succeeds, from a Kriging model of the success indicator.
   std::optional<Kriging> feasibility;
   if (!impute && failures() > 0) {
@@ -183,7 +192,7 @@ Batch SurrogateOptimizer::propose() {
     if (success[i] == 0.0) xs.push_back(all_x[i]);
   }
 
-  const double f_min = *best_eval->value;
+  const double f_min = g(*best_eval->value);
   const Eigen::VectorXd u_best = to_unit(best_eval->x);
   const std::uint64_t seed =
       detail::Random::mix(config_.seed, static_cast<std::uint64_t>(next_batch_));
@@ -207,7 +216,7 @@ Batch SurrogateOptimizer::propose() {
   // EI, then (q > 2) further EI points on a "kriging believer" surrogate that takes each chosen
   // point's prediction as observed, theta held.
   Eigen::MatrixXd Xb = X;
-  Eigen::VectorXd yb = y;
+  Eigen::VectorXd yb = gy;
   const int ei_points = std::max(1, config_.batch_size - 1);
   for (int j = 0; j < ei_points; ++j) {
     const Kriging believer = j == 0 ? model : Kriging(Xb, yb, model.theta(), config_.kriging);
@@ -226,7 +235,7 @@ Batch SurrogateOptimizer::propose() {
   }
   if (config_.batch_size >= 2) {
     // MSP where success is likely: outside, the prediction is raised by the data's full range.
-    const double range = y.maxCoeff() - y.minCoeff();
+    const double range = gy.maxCoeff() - gy.minCoeff();
     const Eigen::VectorXd u = solve([&](const Eigen::VectorXd& x) {
       return model.predict(x).mean + (p_success(x) < 0.5 ? range : 0.0);
     });
@@ -319,6 +328,7 @@ json config_to_json(const OptimizerConfig& c) {
             {"starts", c.kriging.starts},
             {"max_condition", c.kriging.max_condition}}},
           {"failure_policy", c.failure_policy},
+          {"output_transform", c.output_transform},
           {"seed", c.seed}};
 }
 
@@ -344,6 +354,7 @@ OptimizerConfig config_from_json(const json& j) {
   const auto& k = j.at("kriging");
   c.kriging = {k.at("theta_min"), k.at("theta_max"), k.at("starts"), k.at("max_condition")};
   c.failure_policy = j.at("failure_policy");
+  c.output_transform = j.value("output_transform", "none");  // states written before it existed
   c.seed = j.at("seed").get<std::uint64_t>();
   return c;
 }

@@ -43,6 +43,9 @@ struct OptimizerConfig {
   // success and the MSP point must have it above one half. "impute" puts failed points into the
   // fit at the worst observed value instead.
   std::string failure_policy = "classify";
+  // The surrogate's output scale (output_transform.hpp): "none", "log" (ln of the values, shifted
+  // when some are not positive) or "auto" (per fit, the one with the smaller leave-one-out error).
+  std::string output_transform = "none";
   std::uint64_t seed = 1;
 };
 
@@ -89,6 +92,8 @@ class SurrogateOptimizer {
   [[nodiscard]] std::vector<double> best_history() const;
   // The surrogate's leave-one-out quality at the last fit (normalised RMSE), if any.
   [[nodiscard]] std::optional<double> last_loo_rmse() const { return loo_rmse_; }
+  // The output transform of the last fit ("none" or "log"; "" before the first fit).
+  [[nodiscard]] const std::string& last_transform() const { return transform_; }
 
   // Configuration, seed and evaluations; derived values (best, history) are included for readers
   // and ignored on load.
@@ -110,6 +115,7 @@ class SurrogateOptimizer {
   std::vector<std::optional<Evaluation>> partial_;  // results of pending_ told so far
   std::string stop_reason_;
   std::optional<double> loo_rmse_;
+  std::string transform_;
 };
 
 nlohmann::json config_to_json(const OptimizerConfig& c);
