@@ -14,6 +14,7 @@
 
 #include "auvloop/optimizer/optimizer.hpp"
 #include "auvloop/optimizer/test_functions.hpp"
+#include "sample_stats.hpp"
 
 using namespace auvloop::optimizer;
 
@@ -79,12 +80,7 @@ int main(int argc, char** argv) {
         if (o.needed > 0) needed.push_back(o.needed);
         used += o.used;
       }
-      const double mean = needed.empty() ? 0
-                                         : std::accumulate(needed.begin(), needed.end(), 0.0) /
-                                               static_cast<double>(needed.size());
-      double sd = 0;
-      for (double x : needed) sd += (x - mean) * (x - mean);
-      sd = needed.size() > 1 ? std::sqrt(sd / static_cast<double>(needed.size() - 1)) : 0;
+      const auto [mean, sd] = mean_sd(needed);
       std::printf("%-12s %-38s %5zu/%-2d %16.1f %8.1f %10.1f\n", name, v.name.c_str(),
                   needed.size(), seeds, mean, sd, used / seeds);
     }

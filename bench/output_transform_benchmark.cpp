@@ -27,6 +27,7 @@
 #include "auvloop/optimizer/optimizer.hpp"
 #include "auvloop/optimizer/test_functions.hpp"
 #include "auvloop/results/manoeuvre_metrics.hpp"
+#include "sample_stats.hpp"
 
 using namespace auvloop;
 using optimizer::OptimizerConfig;
@@ -126,12 +127,7 @@ int main(int argc, char** argv) {
           }
         }
       }
-      const double mean = needed.empty() ? 0
-                                         : std::accumulate(needed.begin(), needed.end(), 0.0) /
-                                               static_cast<double>(needed.size());
-      double sd = 0;
-      for (double x : needed) sd += (x - mean) * (x - mean);
-      sd = needed.size() > 1 ? std::sqrt(sd / static_cast<double>(needed.size() - 1)) : 0;
+      const auto [mean, sd] = mean_sd(needed);
       std::sort(bests.begin(), bests.end());
       std::printf("%-16s %-6s %5zu/%-2d %14.1f %8.1f %10.1f %14.6g\n", name.c_str(), t,
                   needed.size(), seeds, mean, sd, used / seeds, bests[bests.size() / 2]);
